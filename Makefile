@@ -1,0 +1,36 @@
+# Two entry points for a fresh machine (see README): `make run` and `make test`.
+PYTHON ?= python3
+VENV   ?= .venv
+BIN     = $(VENV)/bin
+OUT    ?= runs/demo
+
+.PHONY: run test test-all lint bench clean
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --upgrade pip
+
+$(VENV)/.installed: pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install -e ".[dev]"
+	touch $@
+
+# The main job: a headless run that writes a recording and a plot into $(OUT).
+run: $(VENV)/.installed
+	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush topology demo --out $(OUT)
+
+# Default suite (< 10 min on 2 cores); long physics runs are marked `slow`.
+test: $(VENV)/.installed
+	$(BIN)/ruff check .
+	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/python -m pytest -n 2 -q
+
+test-all: $(VENV)/.installed
+	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/python -m pytest -n 2 -q -m "slow or not slow"
+
+lint: $(VENV)/.installed
+	$(BIN)/ruff check . && $(BIN)/ruff format --check .
+
+bench: $(VENV)/.installed
+	$(BIN)/python scripts/benchmark_topology.py
+
+clean:
+	rm -rf $(VENV) runs .pytest_cache

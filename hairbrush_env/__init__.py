@@ -1,0 +1,17 @@
+"""hairbrush_env — robotic hair brushing in MuJoCo, and the rod-physics / curve-topology toolkit behind it.
+
+Science: S. Plumb-Reyes, *Topology, geometry and mechanics of entangled filaments* (PhD thesis, Harvard, 2021).
+Submodules are imported lazily so that ``import hairbrush_env`` stays cheap (no numba compile, no MuJoCo
+model build) — a training script that only calls ``gymnasium.make`` pays only for what it uses.
+"""
+
+from __future__ import annotations
+
+from importlib import metadata as _metadata
+
+try:
+    __version__ = _metadata.version("hairbrush-env")
+except _metadata.PackageNotFoundError:  # running from a source tree without installation
+    __version__ = "0.0.0+unknown"
+
+__all__ = ["__version__"]
