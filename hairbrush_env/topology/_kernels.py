@@ -1,0 +1,224 @@
+"""Numba kernels: the exact Gauss integral of a pair of straight segments.
+
+For segments ``a0→a1`` and ``b0→b1`` the difference vectors ``b(t) − a(s)`` sweep a planar parallelogram with
+corners ``b0−a0, b1−a0, b1−a1, b0−a1``. The Gauss integral of the pair (thesis eq. 1.15) is the signed solid angle
+Ω that parallelogram subtends at the origin, divided by 4π (Banchoff 1976; Klenin & Langowski 2000). We split it
+into two triangles and evaluate each with the Van Oosterom–Strackee formula::
+
+    tan(Ω_T / 2) = a·(b×c) / (|a||b||c| + (a·b)|c| + (a·c)|b| + (b·c)|a|)
+
+which is the robust two-atan2 form of Arai (2013). Because the parallelogram never contains the origin unless the
+segments intersect, |Ω| < 2π, so the two half-angles can be summed by multiplying the complex numbers
+``D + iN`` of the two triangles and taking ONE atan2 of the product — exact, with no branch cut inside the domain.
+
+Hot-loop design (≥ 5e7 pairs/s on 2 cores): rows (segments of the first curve) run in parallel; inside a row the
+vertex differences and their norms for vertex ``j+1`` are carried over to segment ``j+1``, so each segment pair
+costs two new difference vectors, two square roots, one atan2 and ~60 flops, with no temporaries.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba as nb
+import numpy as np
+
+_INV_2PI = 1.0 / (2.0 * math.pi)
+
+
+@nb.njit(cache=True, fastmath=False, inline="always")
+def _pair_term(
+    px,
+    py,
+    pz,
+    pn,  # b_j - a_i       (corner 1) and its norm
+    qx,
+    qy,
+    qz,
+    qn,  # b_{j+1} - a_i   (corner 2)
+    rx,
+    ry,
+    rz,
+    rn,  # b_{j+1} - a_{i+1} (corner 3)
+    sx,
+    sy,
+    sz,
+    sn,  # b_j - a_{i+1}   (corner 4)
+):  # pragma: no cover - compiled
+    # Triangle 1: (p, q, r)
+    cx = qy * rz - qz * ry
+    cy = qz * rx - qx * rz
+    cz = qx * ry - qy * rx
+    n1 = px * cx + py * cy + pz * cz
+    m1 = pn * qn * rn
+    d1 = (
+        m1
+        + (px * qx + py * qy + pz * qz) * rn
+        + (px * rx + py * ry + pz * rz) * qn
+        + (qx * rx + qy * ry + qz * rz) * pn
+    )
+    # Triangle 2: (p, r, s)
+    cx = ry * sz - rz * sy
+    cy = rz * sx - rx * sz
+    cz = rx * sy - ry * sx
+    n2 = px * cx + py * cy + pz * cz
+    m2 = pn * rn * sn
+    d2 = (
+        m2
+        + (px * rx + py * ry + pz * rz) * sn
+        + (px * sx + py * sy + pz * sz) * rn
+        + (rx * sx + ry * sy + rz * sz) * pn
+    )
+    # Ω/2 = arg((d1 + i n1)(d2 + i n2)); Gauss integral = Ω / 4π = arg / 2π. The minus sign orients the result
+    # like eq. 1.15, (1/4π)∮∮ (r1−r2)·(dr1×dr2)/|r1−r2|³ (checked against quadrature in the tests).
+    g = -math.atan2(n1 * d2 + n2 * d1, d1 * d2 - n1 * n2) * _INV_2PI
+    # Degenerate pair (segments touch or intersect: the origin lies on the parallelogram, Lk undefined).
+    # Only possible when a triangle's solid angle reaches π (D ≤ 0 up to rounding), so the cheap test guards the
+    # exact one: the origin is then coplanar with both triangles (N ≈ 0).
+    bad = False
+    tol = 1e-12
+    if d1 <= tol * m1 or d2 <= tol * m2:
+        bad = abs(n1) <= tol * m1 + 1e-300 and abs(n2) <= tol * m2 + 1e-300
+    return g, bad
+
+
+@nb.njit(cache=True, parallel=True, fastmath=False)
+def pair_row_sums(a, b, absolute, skip_adjacent, closed_self):  # pragma: no cover - compiled
+    """Row sums of the segment-pair Gauss matrix.
+
+    ``a`` (n+1, 3) and ``b`` (m+1, 3) are polylines whose consecutive vertices form the segments. Returns
+    ``out[i] = Σ_j G_ij`` (or ``Σ_j |G_ij|`` if ``absolute``). With ``skip_adjacent`` (a and b are the same
+    curve) pairs sharing a vertex — j ∈ {i−1, i, i+1}, and the wrap-around pair if ``closed_self`` — are skipped;
+    their exact contribution is zero anyway (coplanar), but skipping avoids 0/0 at the shared vertex.
+    Also returns the number of degenerate (touching/intersecting) pairs per row; they contribute 0.
+    """
+    n = a.shape[0] - 1
+    m = b.shape[0] - 1
+    out = np.zeros(n)
+    nbad = np.zeros(n, dtype=np.int64)
+    for i in nb.prange(n):
+        a0x, a0y, a0z = a[i, 0], a[i, 1], a[i, 2]
+        a1x, a1y, a1z = a[i + 1, 0], a[i + 1, 1], a[i + 1, 2]
+        # corner vectors for vertex j = 0
+        px = b[0, 0] - a0x
+        py = b[0, 1] - a0y
+        pz = b[0, 2] - a0z
+        sx = b[0, 0] - a1x
+        sy = b[0, 1] - a1y
+        sz = b[0, 2] - a1z
+        pn = math.sqrt(px * px + py * py + pz * pz)
+        sn = math.sqrt(sx * sx + sy * sy + sz * sz)
+        acc = 0.0
+        for j in range(m):
+            qx = b[j + 1, 0] - a0x
+            qy = b[j + 1, 1] - a0y
+            qz = b[j + 1, 2] - a0z
+            rx = b[j + 1, 0] - a1x
+            ry = b[j + 1, 1] - a1y
+            rz = b[j + 1, 2] - a1z
+            qn = math.sqrt(qx * qx + qy * qy + qz * qz)
+            rn = math.sqrt(rx * rx + ry * ry + rz * rz)
+            use = True
+            if skip_adjacent:
+                d = i - j
+                if d >= -1 and d <= 1:
+                    use = False
+                elif closed_self and (d == n - 1 or d == 1 - n):
+                    use = False
+            if use:
+                g, bad = _pair_term(px, py, pz, pn, qx, qy, qz, qn, rx, ry, rz, rn, sx, sy, sz, sn)
+                if bad:
+                    nbad[i] += 1
+                else:
+                    acc += abs(g) if absolute else g
+            # vertex j+1 becomes vertex j of the next segment
+            px, py, pz, pn = qx, qy, qz, qn
+            sx, sy, sz, sn = rx, ry, rz, rn
+        out[i] = acc
+    return out, nbad
+
+
+@nb.njit(cache=True, parallel=True, fastmath=False)
+def pair_matrix(a, b):  # pragma: no cover - compiled
+    """Full segment-pair Gauss matrix ``G[i, j]`` and the count of degenerate pairs (set to 0)."""
+    n = a.shape[0] - 1
+    m = b.shape[0] - 1
+    out = np.empty((n, m))
+    nbad = np.zeros(n, dtype=np.int64)
+    for i in nb.prange(n):
+        a0x, a0y, a0z = a[i, 0], a[i, 1], a[i, 2]
+        a1x, a1y, a1z = a[i + 1, 0], a[i + 1, 1], a[i + 1, 2]
+        px = b[0, 0] - a0x
+        py = b[0, 1] - a0y
+        pz = b[0, 2] - a0z
+        sx = b[0, 0] - a1x
+        sy = b[0, 1] - a1y
+        sz = b[0, 2] - a1z
+        pn = math.sqrt(px * px + py * py + pz * pz)
+        sn = math.sqrt(sx * sx + sy * sy + sz * sz)
+        for j in range(m):
+            qx = b[j + 1, 0] - a0x
+            qy = b[j + 1, 1] - a0y
+            qz = b[j + 1, 2] - a0z
+            rx = b[j + 1, 0] - a1x
+            ry = b[j + 1, 1] - a1y
+            rz = b[j + 1, 2] - a1z
+            qn = math.sqrt(qx * qx + qy * qy + qz * qz)
+            rn = math.sqrt(rx * rx + ry * ry + rz * rz)
+            g, bad = _pair_term(px, py, pz, pn, qx, qy, qz, qn, rx, ry, rz, rn, sx, sy, sz, sn)
+            out[i, j] = 0.0 if bad else g
+            nbad[i] += bad
+            px, py, pz, pn = qx, qy, qz, qn
+            sx, sy, sz, sn = rx, ry, rz, rn
+    return out, nbad.sum()
+
+
+@nb.njit(cache=True, parallel=True)
+def min_segment_distance(a, b):  # pragma: no cover - compiled
+    """Minimum distance between any segment of ``a`` and any segment of ``b`` (for touching checks)."""
+    n = a.shape[0] - 1
+    m = b.shape[0] - 1
+    best = np.empty(n)
+    for i in nb.prange(n):
+        lo = np.inf
+        for j in range(m):
+            d = _segment_distance(a[i], a[i + 1], b[j], b[j + 1])
+            if d < lo:
+                lo = d
+        best[i] = lo
+    return best.min()
+
+
+@nb.njit(cache=True, inline="always")
+def _segment_distance(p0, p1, q0, q1):  # pragma: no cover - compiled
+    # Closest points of two segments (Ericson, Real-Time Collision Detection §5.1.9), degenerate-safe.
+    d1 = p1 - p0
+    d2 = q1 - q0
+    r = p0 - q0
+    a = d1 @ d1
+    e = d2 @ d2
+    f = d2 @ r
+    eps = 1e-300
+    if a <= eps and e <= eps:
+        return math.sqrt(r @ r)
+    if a <= eps:
+        s = 0.0
+        t = min(max(f / e, 0.0), 1.0)
+    else:
+        c = d1 @ r
+        if e <= eps:
+            t = 0.0
+            s = min(max(-c / a, 0.0), 1.0)
+        else:
+            bb = d1 @ d2
+            den = a * e - bb * bb
+            s = min(max((bb * f - c * e) / den, 0.0), 1.0) if den > eps else 0.0
+            t = (bb * s + f) / e
+            if t < 0.0:
+                t = 0.0
+                s = min(max(-c / a, 0.0), 1.0)
+            elif t > 1.0:
+                t = 1.0
+                s = min(max((bb - c) / a, 0.0), 1.0)
+    dx = (p0 + d1 * s) - (q0 + d2 * t)
+    return math.sqrt(dx @ dx)

@@ -1,0 +1,45 @@
+"""The `hairbrush` command: help, version and the topology demo end to end."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from hairbrush_env import __version__
+from hairbrush_env.cli import main
+
+
+def test_help_and_version(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["--version"])
+    assert exc.value.code == 0
+    assert __version__ in capsys.readouterr().out
+    out = subprocess.run(
+        [sys.executable, "-m", "hairbrush_env.cli", "--help"], capture_output=True, text=True
+    )
+    assert out.returncode == 0 and "topology" in out.stdout
+
+
+def test_topology_demo_writes_outputs(tmp_path):
+    assert main(["topology", "demo", "--out", str(tmp_path), "--frames", "6"]) == 0
+    summary = json.loads((tmp_path / "topology_demo.json").read_text())
+    lk = np.array(summary["lk"])
+    assert lk[0] > 9 and abs(lk[-1]) < 1e-9  # all link expelled at the end of the stroke
+    assert np.all(np.diff(lk) <= 1e-12)
+    assert (tmp_path / "topology_demo.png").stat().st_size > 10_000
+    assert (tmp_path / "topology_demo.rrd").stat().st_size > 1_000
+    assert not list(tmp_path.glob(".*tmp*"))  # atomic writes leave no temporaries
+
+
+def test_topology_lk_command(tmp_path, capsys):
+    t = np.linspace(0, 2 * np.pi, 100, endpoint=False)
+    np.save(tmp_path / "a.npy", np.column_stack([np.cos(t), np.sin(t), 0 * t]))
+    np.savetxt(tmp_path / "b.csv", np.column_stack([1 + np.cos(t), 0 * t, np.sin(t)]), delimiter=",")
+    assert main(["topology", "lk", str(tmp_path / "a.npy"), str(tmp_path / "b.csv")]) == 0
+    assert "Lk = -1.000000" in capsys.readouterr().out
+    with pytest.raises(SystemExit, match="not found"):
+        main(["topology", "lk", str(tmp_path / "missing.npy"), str(tmp_path / "b.csv")])
