@@ -10,8 +10,11 @@ $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --upgrade pip
 
+# torch first, pinned: its CPU wheel is on this machine; an unpinned torch (pulled by stable-baselines3) would
+# download GBs of CUDA packages.
 $(VENV)/.installed: pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install -e ".[dev]"
+	$(BIN)/python -m pip install "torch==2.13.0"
+	$(BIN)/python -m pip install -e ".[dev,rl]"
 	touch $@
 
 # The main job: a headless run that writes a recording and a plot into $(OUT).

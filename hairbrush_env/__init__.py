@@ -15,3 +15,9 @@ except _metadata.PackageNotFoundError:  # running from a source tree without ins
     __version__ = "0.0.0+unknown"
 
 __all__ = ["__version__"]
+
+# `gymnasium.make("HairBrush-v0")` works after `import hairbrush_env`: registration uses string entry points, so
+# this imports only gymnasium's registry, not MuJoCo or the env modules.
+from .envs import register_envs as _register_envs
+
+_register_envs()

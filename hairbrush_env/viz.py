@@ -66,3 +66,115 @@ def record_curves(
                 rec.log(name, rr.Scalars([float(series[k])]))
         rec.flush()
         rec.disconnect()
+
+
+class EpisodeRecorder:
+    """Rerun recording of brushing episodes: strands as line strips coloured by pair, the brush position, the
+    webcam image, the load-cell force as a time series and the entanglement per stroke.
+
+    Everything goes to one ``.rrd`` file written atomically on :meth:`close`. Create one only when recording is
+    wanted — a run without a recorder pays nothing.
+    """
+
+    def __init__(self, path: str | os.PathLike[str], *, application_id: str = "hairbrush_env") -> None:
+        import rerun as rr
+
+        self._rr = rr
+        self._final = path
+        self._ctx = atomic_path(path)
+        self._tmp = self._ctx.__enter__()
+        self._rec = rr.RecordingStream(application_id)
+        self._rec.save(self._tmp)
+        self._offset = 0.0  # episodes are laid end to end on the time axis
+
+    def new_episode(self, episode: int, t_offset: float) -> None:
+        self._offset = float(t_offset)
+        self._rec.set_time("t", duration=self._offset)
+        self._rec.log("episode", self._rr.TextLog(f"episode {episode} starts"))
+
+    def _at(self, t: float) -> None:
+        self._rec.set_time("t", duration=self._offset + float(t))
+
+    def frame(self, t: float, strands: Sequence[np.ndarray], groups: Sequence[int], brush: np.ndarray) -> None:
+        """Log the strands (coloured by their entwined group) and the brush position at sim time ``t``."""
+        rr = self._rr
+        self._at(t)
+        colors = [rgb(PALETTE[g % len(PALETTE)]) for g in groups]
+        self._rec.log(
+            "scene/hair", rr.LineStrips3D([np.asarray(s, np.float32) for s in strands], colors=colors, radii=0.0008)
+        )
+        self._rec.log("scene/brush", rr.Points3D([np.asarray(brush, np.float32)], radii=0.01, colors=[(40, 40, 40)]))
+
+    def force(self, t: float, value: float) -> None:
+        self._at(t)
+        self._rec.log("load_cell/force_N", self._rr.Scalars([float(value)]))
+
+    def image(self, t: float, img: np.ndarray) -> None:
+        self._at(t)
+        self._rec.log("camera/webcam", self._rr.Image(np.asarray(img)))
+
+    def stroke(self, t: float, index: int, max_force: float, entanglement: float) -> None:
+        self._at(t)
+        self._rec.log("strokes/max_force_N", self._rr.Scalars([float(max_force)]))
+        self._rec.log("strokes/entanglement", self._rr.Scalars([float(entanglement)]))
+
+    def close(self) -> None:
+        if self._rec is None:
+            return
+        self._rec.flush()
+        self._rec.disconnect()
+        self._rec = None
+        self._ctx.__exit__(None, None, None)
+
+
+class VideoWriter:
+    """MP4 video of webcam frames (OpenCV, ``mp4v``), written atomically on :meth:`close`."""
+
+    def __init__(self, path: str | os.PathLike[str], *, fps: float = 10.0) -> None:
+        self._ctx = atomic_path(path)
+        self._tmp = self._ctx.__enter__()
+        self._fps = fps
+        self._writer = None
+
+    def add(self, img: np.ndarray) -> None:
+        import cv2
+
+        if self._writer is None:
+            h, w = img.shape[:2]
+            self._writer = cv2.VideoWriter(str(self._tmp), cv2.VideoWriter_fourcc(*"mp4v"), self._fps, (w, h))
+        self._writer.write(cv2.cvtColor(np.ascontiguousarray(img), cv2.COLOR_RGB2BGR))
+
+    def close(self) -> None:
+        if self._writer is not None:
+            self._writer.release()
+            self._writer = None
+        self._ctx.__exit__(None, None, None)
+
+
+def plot_rollout(episodes: Sequence[Mapping], path: str | os.PathLike[str], *, force_threshold: float = 10.0) -> None:
+    """Force vs time (10 Hz samples, strokes laid end to end) and max force per stroke, one colour per episode.
+
+    ``episodes`` are dicts as produced by :meth:`hairbrush_env.rollout.EpisodeLog.to_dict`.
+    """
+    fig, axes = new_figure(2, 1, width=5.5, height=4.0)
+    ax_t, ax_s = axes[0]
+    for i, ep in enumerate(episodes):
+        color = PALETTE[i % len(PALETTE)]
+        t_all, f_all = [], []
+        for step in ep["steps"]:
+            n = len(step["forces"])
+            t_all.extend(step["t_start"] + 0.1 * np.arange(n))
+            f_all.extend(step["forces"])
+            t_all.append(np.nan)  # break the line between strokes
+            f_all.append(np.nan)
+        label = f"{ep['policy']} · {ep['wig']} · ep {ep['episode']}"
+        ax_t.plot(t_all, f_all, color=color, lw=1.2, label=label)
+        ax_s.plot(
+            np.arange(1, len(ep["steps"]) + 1), [s["max_force"] for s in ep["steps"]], "o-", color=color, label=label
+        )
+    for ax in (ax_t, ax_s):
+        ax.axhline(force_threshold, color="k", ls="--", lw=1, label="pain threshold F_T")
+    ax_t.set(xlabel="brushing time [s]", ylabel="brushing force [N]", title="Load cell (10 Hz)")
+    ax_s.set(xlabel="stroke", ylabel="max force [N]", title="Max force per stroke")
+    ax_s.legend(fontsize=8)
+    save_figure(fig, path)

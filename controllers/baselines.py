@@ -1,0 +1,64 @@
+"""Baseline policies: full-length strokes, the naive thirds schedule and uniformly random actions.
+
+They follow :class:`hairbrush_env.policies.Policy` and are registered under the entry-point group
+``hairbrush_env.policies`` (names ``full``, ``naive`` and ``random``) so ``hairbrush rollout --policy NAME`` finds them.
+Both work on ``HairBrush-v0`` (stroke level); ``random`` works on any env.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+
+def _stroke_env(env: Any):
+    base = getattr(env, "unwrapped", env)
+    if not hasattr(base, "brush_length_to_action"):
+        raise ValueError(f"env: {type(base).__name__} is not a stroke-level env (HairBrush-v0)")
+    return base
+
+
+class FullStrokePolicy:
+    """Always brush the whole length (b_l = 1): the thesis's no-strategy baseline (Fig. 3.7, longest strokes)."""
+
+    def __init__(self, env: Any) -> None:
+        self._action = _stroke_env(env).brush_length_to_action(1.0)
+
+    def reset(self, seed: int | None = None) -> None:
+        """Stateless."""
+
+    def act(self, obs: Any) -> np.ndarray:
+        return self._action.copy()
+
+
+class NaiveThirdsPolicy:
+    """The thesis's naive strategy: b_l = 1/3, 2/3, 1, then full-length strokes (no force feedback)."""
+
+    SCHEDULE = (1 / 3, 2 / 3, 1.0)
+
+    def __init__(self, env: Any) -> None:
+        self._env = _stroke_env(env)
+        self._i = 0
+
+    def reset(self, seed: int | None = None) -> None:
+        self._i = 0
+
+    def act(self, obs: Any) -> np.ndarray:
+        b_l = self.SCHEDULE[min(self._i, len(self.SCHEDULE) - 1)]
+        self._i += 1
+        return self._env.brush_length_to_action(b_l)
+
+
+class RandomPolicy:
+    """Uniform samples from the action space, seeded by :meth:`reset` (reproducible rollouts)."""
+
+    def __init__(self, env: Any) -> None:
+        self._space = env.action_space
+        self._space.seed(0)
+
+    def reset(self, seed: int | None = None) -> None:
+        self._space.seed(seed)
+
+    def act(self, obs: Any) -> np.ndarray:
+        return self._space.sample()

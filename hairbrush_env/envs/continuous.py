@@ -1,0 +1,196 @@
+"""HairBrushContinuous-v0: 10 Hz velocity control of the brush."""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import EzPickle
+
+from .common import PAIN_THRESHOLD_N, RewardConfig, check_action, check_positive
+from .stroke import OBS_MODES
+
+CONTROL_DT = 0.1  # 10 Hz, the load cell's rate
+
+
+class HairBrushContinuousEnv(gym.Env, EzPickle):
+    r"""Robotic hair brushing with velocity control at 10 Hz.
+
+    ## Description
+    The same scene as `HairBrush-v0` (arm, sensorized brush, pre-brushed wig on a head mount, webcam), but the agent
+    commands the brush's vertical and depth velocity every 0.1 s; the arm's Cartesian controller keeps the brush
+    level. It is the low-level counterpart of the stroke-level env, for agents that learn their own strokes.
+
+    ## Action Space
+    `Box(-1, 1, (2,), float32)`: vertical velocity (up positive) scaled by `max_vertical_speed` and depth
+    velocity (into the hair positive) scaled by `max_depth_speed`.
+
+    ## Observation Space
+    A `Dict`: `force` `Box(-inf, inf, (3,), float32)` (tared load-cell force in the world frame, N),
+    `brush_position` `Box(-inf, inf, (3,), float32)` (brush centre relative to the hair root line, m),
+    `elapsed` `Box(0, inf, (1,), float32)` (s), and `image` `Box(0, 255, (height, width, 3), uint8)` when
+    `obs_mode` includes images.
+
+    ## Rewards
+    As `HairBrush-v0`: `reward_progress + reward_time + reward_pain`, with the time cost per control step (0.1 s)
+    and the pain penalty on the brushing force above F_T; no repositioning overhead.
+
+    ## Starting State
+    A pre-brushed wig (one of `n_wig_states` cached states picked by the seed); brush above the hair at the
+    stroke depth.
+
+    ## Episode End
+    Termination when the entanglement falls to `detangled_fraction` of its initial value; truncation after
+    `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
+
+    ## Arguments
+    `wig`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `detangled_fraction`,
+    `reward`, `load_cell_noise` as in `HairBrush-v0`, plus `max_vertical_speed` (0.2 m/s) and `max_depth_speed`
+    (0.05 m/s).
+
+    ## Version History
+    - v0: initial release.
+    """
+
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["rgb_array"], "render_fps": 10}
+
+    def __init__(
+        self,
+        *,
+        wig: Any = "curly",
+        obs_mode: str = "state",
+        render_mode: str | None = None,
+        width: int = 160,
+        height: int = 120,
+        force_threshold: float = PAIN_THRESHOLD_N,
+        max_vertical_speed: float = 0.2,
+        max_depth_speed: float = 0.05,
+        n_wig_states: int = 4,
+        detangled_fraction: float = 0.05,
+        reward: RewardConfig | None = None,
+        load_cell_noise: float = 0.02,
+    ) -> None:
+        EzPickle.__init__(
+            self,
+            wig=wig,
+            obs_mode=obs_mode,
+            render_mode=render_mode,
+            width=width,
+            height=height,
+            force_threshold=force_threshold,
+            max_vertical_speed=max_vertical_speed,
+            max_depth_speed=max_depth_speed,
+            n_wig_states=n_wig_states,
+            detangled_fraction=detangled_fraction,
+            reward=reward,
+            load_cell_noise=load_cell_noise,
+        )
+        from ..scene import BrushingSim, SceneConfig
+
+        if obs_mode not in OBS_MODES:
+            raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
+        if render_mode not in (None, "rgb_array"):
+            raise ValueError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
+        if int(n_wig_states) != n_wig_states or n_wig_states < 1:
+            raise ValueError(f"n_wig_states: must be a positive integer, got {n_wig_states!r}")
+        if not (0.0 <= detangled_fraction < 1.0):
+            raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
+        for name, value in (("width", width), ("height", height)):
+            if int(value) != value or not 16 <= value <= 2048:
+                raise ValueError(f"{name}: must be an integer in [16, 2048], got {value!r}")
+        self.obs_mode = obs_mode
+        self.render_mode = render_mode
+        self.width, self.height = int(width), int(height)
+        self.force_threshold = check_positive("force_threshold", force_threshold)
+        self.max_vertical_speed = check_positive("max_vertical_speed", max_vertical_speed)
+        self.max_depth_speed = check_positive("max_depth_speed", max_depth_speed)
+        self.n_wig_states = int(n_wig_states)
+        self.detangled_fraction = float(detangled_fraction)
+        self.reward_config = reward if reward is not None else RewardConfig()
+        self.sim = BrushingSim(SceneConfig.make(wig=wig, load_cell_noise=load_cell_noise))
+
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
+        obs_spaces: dict[str, spaces.Space] = {}
+        if "state" in obs_mode:
+            obs_spaces.update(
+                force=spaces.Box(-np.inf, np.inf, shape=(3,), dtype=np.float32),
+                brush_position=spaces.Box(-np.inf, np.inf, shape=(3,), dtype=np.float32),
+                elapsed=spaces.Box(0.0, np.inf, shape=(1,), dtype=np.float32),
+            )
+        if "image" in obs_mode:
+            obs_spaces["image"] = spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
+        self.observation_space = spaces.Dict(obs_spaces)
+        self._force = np.zeros(3)
+        self._e0 = self._e = 1.0
+        self._t = 0.0
+        self._pain = 0
+        self._max_force = 0.0
+
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        self.sim.reset(int(self.np_random.integers(self.n_wig_states)), rng=self.np_random)
+        self._e0 = self._e = self.sim.entanglement()
+        self._t, self._pain, self._max_force = 0.0, 0, 0.0
+        self._force = np.zeros(3)
+        return self._obs(), self._info(False)
+
+    def step(self, action):
+        action = check_action(action, self.action_space)
+        v_z = float(action[0]) * self.max_vertical_speed
+        v_depth = float(action[1]) * self.max_depth_speed
+        result = self.sim.step_velocity(v_z, v_depth, CONTROL_DT, rng=self.np_random)
+        self._t += CONTROL_DT
+        if result.diverged:
+            info = self._info(True)
+            info.update(reward_progress=0.0, reward_time=0.0, reward_pain=0.0)
+            return self._obs(), 0.0, False, True, info
+        self._force = np.asarray(result.force, dtype=np.float64)
+        brushing = float(result.brushing_force)
+        self._max_force = max(self._max_force, brushing)
+        self._pain += int(brushing >= self.force_threshold)
+        e_now = self.sim.entanglement()
+        terms = self.reward_config.terms(
+            e_prev=self._e,
+            e_now=e_now,
+            e_initial=self._e0,
+            elapsed=CONTROL_DT,
+            forces=np.array([brushing]),
+            threshold=self.force_threshold,
+        )
+        self._e = e_now
+        info = self._info(False)
+        info.update(terms, brushing_force=brushing, force_samples=[brushing])
+        terminated = e_now <= self.detangled_fraction * self._e0
+        return self._obs(), float(sum(terms.values())), bool(terminated), False, info
+
+    def render(self):
+        if self.render_mode == "rgb_array":
+            return self.sim.render(width=self.width, height=self.height)
+        return None
+
+    def close(self):
+        self.sim.close()
+
+    def _obs(self) -> dict[str, np.ndarray]:
+        obs: dict[str, np.ndarray] = {}
+        if "state" in self.obs_mode:
+            obs["force"] = self._force.astype(np.float32)
+            obs["brush_position"] = self.sim.brush_position().astype(np.float32)
+            obs["elapsed"] = np.array([self._t], np.float32)
+        if "image" in self.obs_mode:
+            obs["image"] = self.sim.render(width=self.width, height=self.height)
+        return obs
+
+    def _info(self, diverged: bool) -> dict[str, Any]:
+        return {
+            "max_force": float(self._max_force),
+            "pain_violations": self._pain,
+            "entanglement": float(self._e),
+            "entanglement_initial": float(self._e0),
+            "curliness_true": float(self.sim.curliness_true),
+            "sim_time": float(self._t),
+            "diverged": bool(diverged),
+            "wig": self.sim.wig.name,
+        }

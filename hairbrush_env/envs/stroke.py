@@ -1,0 +1,276 @@
+"""HairBrush-v0: one step = one brush stroke (the thesis's decision level, chapter 3, Algorithm 1)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+from gymnasium.utils import EzPickle
+
+from .common import PAIN_THRESHOLD_N, RewardConfig, check_action, check_positive
+
+OBS_MODES = ("state", "image", "state+image")
+
+
+class HairBrushEnv(gym.Env, EzPickle):
+    r"""Robotic hair brushing at the stroke level.
+
+    ## Description
+    A robot arm holds a sensorized brush next to a wig hanging from a head mount (thesis chapter 3). Each step is
+    one downward brush stroke: the brush moves to the start height, at a fixed depth inside the hair, then pulls
+    straight down past the free ends at a fixed speed while the load cell is sampled at 10 Hz; the stroke is
+    aborted as soon as the force reaches the pain threshold F_T (the inner loop of Algorithm 1). Neighbouring hair
+    wisps are entwined in homochiral pairs; strokes comb the link out through the free ends.
+
+    ## Action Space
+    `Box(-1, 1, (1,), float32)`: the normalized start height b_l (the thesis's brush length, the fraction of the hair
+    length measured up from the free ends), rescaled linearly from [-1, 1] to [`min_brush_length`, 1]. Use
+    :meth:`brush_length_to_action` / :meth:`action_to_brush_length` to convert.
+
+    ## Observation Space
+    A `Dict` (one level):
+
+    | key | space | meaning |
+    |---|---|---|
+    | `force_trace` | `Box(0, inf, (trace_length,), float32)` | brushing force [N], 10 Hz, last stroke, 0-padded |
+    | `max_force` | `Box(0, inf, (1,), float32)` | maximum force of the last stroke [N] |
+    | `brush_length` | `Box(0, 1, (1,), float32)` | b_l of the last stroke (0 before the first) |
+    | `stroke_index` | `Box(0, inf, (1,), float32)` | strokes done in this episode |
+    | `image` | `Box(0, 255, (height, width, 3), uint8)` | fixed "webcam" view (with `obs_mode` containing "image") |
+
+    The first observation after `reset` shows the tangled wig, so a vision policy can estimate curliness.
+
+    ## Rewards
+    `reward = reward_progress + reward_time + reward_pain` (see :class:`RewardConfig`): detangling progress (drop of
+    the entanglement Σ|Lk| over entwined pairs, normalized by its initial value), minus a time cost (simulated
+    stroke time plus a fixed repositioning overhead), minus a pain penalty (force above F_T, summed over samples).
+    Each term is reported in `info`.
+
+    ## Starting State
+    A pre-brushed wig: the wig is shaken into a reproducible tangled state chosen by the seed among
+    `n_wig_states` cached states (so `reset` is fast); the brush waits above the hair.
+
+    ## Episode End
+    - Termination: the wig is detangled (entanglement ≤ `detangled_fraction` × initial) or the finish rule of
+      thesis eq. 3.4 holds: |f_max,i − f_max,i−1| < 0.4 N and b_l ≥ 1.
+    - Truncation: `max_episode_steps` strokes (set at registration, 30), or the simulation diverged
+      (`info["diverged"] = True`; the episode ends, nothing is raised).
+
+    ## Info
+    `max_force`, `pain_violations` (strokes so far whose force reached F_T), `entanglement`,
+    `entanglement_initial`, `curliness_true` (R/P of the wig), `sim_time` (simulated brushing time so far, s),
+    `diverged`, `brush_length`, `aborted`, `wig` (preset name), `force_samples` (the stroke's 10 Hz force samples,
+    unpadded), `finished_rule` (eq. 3.4), `detangled`, and the reward terms.
+
+    ## Arguments
+    `gymnasium.make("HairBrush-v0", wig="curly", obs_mode="state+image")`, keyword-only:
+
+    | argument | default | meaning |
+    |---|---|---|
+    | `wig` | `"curly"` | preset name from `hairbrush_env.hair.PRESETS` or a `WigConfig` |
+    | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
+    | `render_mode` | `None` | `"rgb_array"` returns the webcam image |
+    | `width`, `height` | 160, 120 | image size in pixels (observation and render) |
+    | `force_threshold` | 10.0 | pain threshold F_T [N] (abort level) |
+    | `stroke_speed` | 0.1 | brush speed during the pull [m/s] |
+    | `min_brush_length` | 0.1 | b_l for action −1 |
+    | `trace_length` | auto | samples kept in `force_trace` (a full stroke at 10 Hz) |
+    | `n_wig_states` | 4 | number of distinct pre-brushed states the seed chooses from |
+    | `detangled_fraction` | 0.05 | termination level of the entanglement |
+    | `reward` | `RewardConfig()` | reward weights |
+    | `load_cell_noise` | 0.02 | load-cell noise s.d. [N] |
+
+    ## Version History
+    - v0: initial release.
+    """
+
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["rgb_array"], "render_fps": 10}
+
+    def __init__(
+        self,
+        *,
+        wig: Any = "curly",
+        obs_mode: str = "state",
+        render_mode: str | None = None,
+        width: int = 160,
+        height: int = 120,
+        force_threshold: float = PAIN_THRESHOLD_N,
+        stroke_speed: float = 0.1,
+        min_brush_length: float = 0.1,
+        trace_length: int | None = None,
+        n_wig_states: int = 4,
+        detangled_fraction: float = 0.05,
+        reward: RewardConfig | None = None,
+        load_cell_noise: float = 0.02,
+    ) -> None:
+        EzPickle.__init__(
+            self,
+            wig=wig,
+            obs_mode=obs_mode,
+            render_mode=render_mode,
+            width=width,
+            height=height,
+            force_threshold=force_threshold,
+            stroke_speed=stroke_speed,
+            min_brush_length=min_brush_length,
+            trace_length=trace_length,
+            n_wig_states=n_wig_states,
+            detangled_fraction=detangled_fraction,
+            reward=reward,
+            load_cell_noise=load_cell_noise,
+        )
+        from ..scene import BrushingSim, SceneConfig  # deferred: importing the package must stay cheap
+
+        if obs_mode not in OBS_MODES:
+            raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
+        if render_mode not in (None, *self.metadata["render_modes"]):
+            raise ValueError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
+        if not (0.0 < min_brush_length < 1.0):
+            raise ValueError(f"min_brush_length: must be in (0, 1), got {min_brush_length!r}")
+        if int(n_wig_states) != n_wig_states or n_wig_states < 1:
+            raise ValueError(f"n_wig_states: must be a positive integer, got {n_wig_states!r}")
+        if not (0.0 <= detangled_fraction < 1.0):
+            raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
+        for name, value in (("width", width), ("height", height)):
+            if int(value) != value or not 16 <= value <= 2048:
+                raise ValueError(f"{name}: must be an integer in [16, 2048], got {value!r}")
+        self.obs_mode = obs_mode
+        self.render_mode = render_mode
+        self.force_threshold = check_positive("force_threshold", force_threshold)
+        self.stroke_speed = check_positive("stroke_speed", stroke_speed)
+        self.min_brush_length = float(min_brush_length)
+        self.n_wig_states = int(n_wig_states)
+        self.detangled_fraction = float(detangled_fraction)
+        self.reward_config = reward if reward is not None else RewardConfig()
+        self.width, self.height = int(width), int(height)
+
+        self.sim = BrushingSim(SceneConfig.make(wig=wig, load_cell_noise=load_cell_noise))
+        if trace_length is None:
+            # a full stroke: travel over the hair length plus the clearance below the free ends, at 10 Hz
+            trace_length = math.ceil(self.sim.stroke_travel(1.0) / self.stroke_speed * 10.0) + 2
+        self.trace_length = int(trace_length)
+
+        self.action_space = spaces.Box(-1.0, 1.0, shape=(1,), dtype=np.float32)
+        obs_spaces: dict[str, spaces.Space] = {}
+        if "state" in obs_mode:
+            obs_spaces.update(
+                force_trace=spaces.Box(0.0, np.inf, shape=(self.trace_length,), dtype=np.float32),
+                max_force=spaces.Box(0.0, np.inf, shape=(1,), dtype=np.float32),
+                brush_length=spaces.Box(0.0, 1.0, shape=(1,), dtype=np.float32),
+                stroke_index=spaces.Box(0.0, np.inf, shape=(1,), dtype=np.float32),
+            )
+        if "image" in obs_mode:
+            obs_spaces["image"] = spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
+        self.observation_space = spaces.Dict(obs_spaces)
+
+        self._last: dict[str, Any] = {}
+        self._e0 = self._e = 1.0
+        self._strokes = 0
+        self._pain = 0
+        self._sim_time = 0.0
+        self._prev_fmax: float | None = None
+
+    # --- conversions -------------------------------------------------------------------------------------------
+    def action_to_brush_length(self, action) -> float:
+        """Map an action in [-1, 1] to the normalized brush length b_l in [min_brush_length, 1]."""
+        a = float(np.clip(np.asarray(action, dtype=np.float64).reshape(-1)[0], -1.0, 1.0))
+        return self.min_brush_length + (a + 1.0) * 0.5 * (1.0 - self.min_brush_length)
+
+    def brush_length_to_action(self, brush_length: float) -> np.ndarray:
+        """Inverse of :meth:`action_to_brush_length` (b_l clipped to the valid range)."""
+        b = float(np.clip(brush_length, self.min_brush_length, 1.0))
+        a = 2.0 * (b - self.min_brush_length) / (1.0 - self.min_brush_length) - 1.0
+        return np.array([a], dtype=np.float32)
+
+    # --- gymnasium API -----------------------------------------------------------------------------------------
+    def reset(self, *, seed: int | None = None, options: dict | None = None):
+        super().reset(seed=seed)
+        wig_state = int(self.np_random.integers(self.n_wig_states))
+        self.sim.reset(wig_state, rng=self.np_random)
+        self._e0 = self._e = self.sim.entanglement()
+        self._strokes, self._pain, self._sim_time = 0, 0, 0.0
+        self._prev_fmax = None
+        self._last = {
+            "force_trace": np.zeros(self.trace_length, np.float32),
+            "max_force": 0.0,
+            "brush_length": 0.0,
+        }
+        return self._obs(), self._info(diverged=False, aborted=False)
+
+    def step(self, action):
+        action = check_action(action, self.action_space)
+        b_l = self.action_to_brush_length(action)
+        result = self.sim.stroke(b_l, speed=self.stroke_speed, force_threshold=self.force_threshold, rng=self.np_random)
+        forces = np.asarray(result.forces, dtype=np.float64)
+        self._strokes += 1
+        self._sim_time += result.sim_time
+        if result.diverged:
+            self._last.update(force_trace=self._trace(forces), max_force=float(result.max_force), brush_length=b_l)
+            info = self._info(diverged=True, aborted=result.aborted)
+            info.update(reward_progress=0.0, reward_time=0.0, reward_pain=0.0, force_samples=forces.tolist())
+            return self._obs(), 0.0, False, True, info
+        e_now = self.sim.entanglement()
+        terms = self.reward_config.terms(
+            e_prev=self._e,
+            e_now=e_now,
+            e_initial=self._e0,
+            elapsed=result.sim_time + self.reward_config.stroke_overhead_s,
+            forces=forces,
+            threshold=self.force_threshold,
+        )
+        self._e = e_now
+        f_max = float(result.max_force)
+        self._pain += int(f_max >= self.force_threshold)
+        finished = (
+            self._prev_fmax is not None and abs(f_max - self._prev_fmax) < 0.4 and b_l >= 1.0 - 1e-9
+        )  # thesis eq. 3.4
+        detangled = e_now <= self.detangled_fraction * self._e0
+        self._prev_fmax = f_max
+        self._last.update(force_trace=self._trace(forces), max_force=f_max, brush_length=b_l)
+        info = self._info(diverged=False, aborted=result.aborted)
+        info.update(terms, finished_rule=finished, detangled=detangled, force_samples=forces.tolist())
+        reward = float(sum(terms.values()))
+        return self._obs(), reward, bool(finished or detangled), False, info
+
+    def render(self):
+        if self.render_mode == "rgb_array":
+            return self.sim.render(width=self.width, height=self.height)
+        return None
+
+    def close(self):
+        self.sim.close()
+
+    # --- helpers -----------------------------------------------------------------------------------------------
+    def _trace(self, forces: np.ndarray) -> np.ndarray:
+        out = np.zeros(self.trace_length, np.float32)
+        n = min(len(forces), self.trace_length)
+        out[:n] = np.clip(forces[:n], 0.0, None)
+        return out
+
+    def _obs(self) -> dict[str, np.ndarray]:
+        obs: dict[str, np.ndarray] = {}
+        if "state" in self.obs_mode:
+            obs["force_trace"] = self._last["force_trace"]
+            obs["max_force"] = np.array([max(self._last["max_force"], 0.0)], np.float32)
+            obs["brush_length"] = np.array([self._last["brush_length"]], np.float32)
+            obs["stroke_index"] = np.array([self._strokes], np.float32)
+        if "image" in self.obs_mode:
+            obs["image"] = self.sim.render(width=self.width, height=self.height)
+        return obs
+
+    def _info(self, *, diverged: bool, aborted: bool) -> dict[str, Any]:
+        return {
+            "max_force": float(self._last.get("max_force", 0.0)),
+            "brush_length": float(self._last.get("brush_length", 0.0)),
+            "pain_violations": self._pain,
+            "entanglement": float(self._e),
+            "entanglement_initial": float(self._e0),
+            "curliness_true": float(self.sim.curliness_true),
+            "sim_time": float(self._sim_time),
+            "diverged": bool(diverged),
+            "aborted": bool(aborted),
+            "wig": self.sim.wig.name,
+        }

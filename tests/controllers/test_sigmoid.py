@@ -1,0 +1,44 @@
+"""Sigmoid start height (eq. 3.3, corrected sign) and the Algorithm 1 update / eq. 3.4 finish rule."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import pytest
+
+from controllers.sigmoid import ClosedLoopConfig, finished, next_brush_length, start_height
+
+
+def test_start_height_corrected_sign():
+    assert start_height(0.5, k=8.5) == pytest.approx(0.5)
+    assert start_height(0.0, k=8.5) == pytest.approx(1 / (1 + math.exp(-4.25)))  # straight hair: long strokes
+    assert start_height(1.0, k=8.5) == pytest.approx(1 / (1 + math.exp(4.25)))  # curly hair: short strokes
+    # the printed "+0.5" would cap every stroke at 1/(1+e^{4.25}) = 1.4 %:
+    assert 1 / (1 + math.exp(8.5 * 0.5)) == pytest.approx(0.014, abs=1e-3)
+    values = [start_height(r / 10) for r in range(11)]
+    assert all(a > b for a, b in itertools.pairwise(values))
+    with pytest.raises(ValueError, match="k"):
+        start_height(0.3, k=-1)
+
+
+def test_algorithm_1_update():
+    cfg = ClosedLoopConfig(increment=0.2, force_threshold=10.0)
+    assert next_brush_length(0.5, 20.0, cfg) == pytest.approx(0.25)  # overshoot: scale by F_T/F_max
+    assert next_brush_length(0.5, 0.0, cfg) == pytest.approx(0.7)  # no force: add the full increment
+    assert next_brush_length(0.5, 5.0, cfg) == pytest.approx(0.5)  # at F_T/2 the length holds
+    assert next_brush_length(0.5, 8.0, cfg) < 0.5  # between F_T/2 and F_T it shrinks
+    assert next_brush_length(0.95, 0.0, cfg) == 1.0  # clipped to the full length
+
+
+def test_finish_rule_eq_3_4():
+    cfg = ClosedLoopConfig()
+    assert finished(3.0, 3.3, 1.0, cfg)
+    assert not finished(3.0, 3.5, 1.0, cfg)
+    assert not finished(3.0, 3.1, 0.9, cfg)
+    assert not finished(3.0, None, 1.0, cfg)
+
+
+def test_config_validation():
+    with pytest.raises(ValueError, match="increment"):
+        ClosedLoopConfig(increment=0)
