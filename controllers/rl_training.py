@@ -1,0 +1,102 @@
+"""Training stable-baselines3 agents on the brushing envs through ``gymnasium.make`` (issue #6).
+
+State observations (the fast default) and images both come as a Dict, so the agents use SB3's
+``MultiInputPolicy``: an MLP over the force features, plus a CNN for the image when ``obs_mode`` includes it.
+Outputs in ``out``: ``model.zip`` (final), ``best/best_model.zip`` (eval callback), ``checkpoints/``,
+``progress.csv`` (SB3's CSV logger), ``eval/evaluations.npz``, ``algo.txt`` and ``config.json``.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+ALGOS = ("ppo", "sac")
+
+
+@dataclass(frozen=True)
+class TrainConfig:
+    env: str = "HairBrush-v0"
+    algo: str = "ppo"
+    total_timesteps: int = 2000
+    n_envs: int = 2
+    seed: int = 0
+    wig: str = "curly"
+    obs_mode: str = "state"
+    eval_freq: int = 500  # env steps (summed over workers) between evaluations
+    eval_episodes: int = 2
+    checkpoint_freq: int = 1000
+    tensorboard: bool = False
+    progress_bar: bool = True
+    vec_env: str = "subproc"  # "subproc" (one process per worker) or "dummy" (in-process)
+
+    def __post_init__(self) -> None:
+        if self.algo not in ALGOS:
+            raise ValueError(f"algo: expected one of {ALGOS}, got {self.algo!r}")
+        if self.env not in ("HairBrush-v0", "HairBrushContinuous-v0"):
+            raise ValueError(f"env: expected HairBrush-v0 or HairBrushContinuous-v0, got {self.env!r}")
+        for name in ("total_timesteps", "n_envs", "eval_freq", "eval_episodes", "checkpoint_freq"):
+            if int(getattr(self, name)) < 1:
+                raise ValueError(f"{name}: must be a positive integer, got {getattr(self, name)!r}")
+        if self.vec_env not in ("subproc", "dummy"):
+            raise ValueError(f"vec_env: expected 'subproc' or 'dummy', got {self.vec_env!r}")
+
+
+def _make_algo(cfg: TrainConfig, venv, log_dir: Path):
+    import stable_baselines3 as sb3
+
+    common = dict(policy="MultiInputPolicy", env=venv, seed=cfg.seed, device="cpu", verbose=0)
+    if cfg.tensorboard:
+        common["tensorboard_log"] = str(log_dir / "tb")
+    if cfg.algo == "ppo":
+        # Episodes are short (≤ 30 strokes) and each step is expensive: small rollouts, several epochs.
+        n_steps = max(8, min(128, cfg.total_timesteps // max(cfg.n_envs, 1) // 2))
+        batch = max(8, min(64, n_steps * cfg.n_envs // 2))
+        return sb3.PPO(n_steps=n_steps, batch_size=batch, n_epochs=10, gamma=0.95, **common)
+    return sb3.SAC(
+        learning_starts=min(200, cfg.total_timesteps // 4), buffer_size=50_000, gamma=0.95, **common
+    )
+
+
+def train(cfg: TrainConfig, out: str | Path):
+    """Train, evaluate and save; returns the trained model."""
+    from stable_baselines3.common.callbacks import CallbackList, CheckpointCallback, EvalCallback
+    from stable_baselines3.common.env_util import make_vec_env
+    from stable_baselines3.common.logger import configure
+    from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
+
+    import hairbrush_env  # noqa: F401  (registers the envs)
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    env_kwargs = {"wig": cfg.wig, "obs_mode": cfg.obs_mode}
+    vec_cls = SubprocVecEnv if (cfg.vec_env == "subproc" and cfg.n_envs > 1) else DummyVecEnv
+    venv = make_vec_env(cfg.env, n_envs=cfg.n_envs, seed=cfg.seed, env_kwargs=env_kwargs, vec_env_cls=vec_cls)
+    eval_env = make_vec_env(cfg.env, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs)
+    try:
+        model = _make_algo(cfg, venv, out)
+        model.set_logger(configure(str(out), ["csv"] + (["tensorboard"] if cfg.tensorboard else [])))
+        callbacks = CallbackList(
+            [
+                EvalCallback(
+                    eval_env,
+                    n_eval_episodes=cfg.eval_episodes,
+                    eval_freq=max(cfg.eval_freq // cfg.n_envs, 1),
+                    best_model_save_path=str(out / "best"),
+                    log_path=str(out / "eval"),
+                    deterministic=True,
+                ),
+                CheckpointCallback(
+                    save_freq=max(cfg.checkpoint_freq // cfg.n_envs, 1), save_path=str(out / "checkpoints")
+                ),
+            ]
+        )
+        model.learn(total_timesteps=cfg.total_timesteps, callback=callbacks, progress_bar=cfg.progress_bar)
+        model.save(out / "model.zip")
+        (out / "algo.txt").write_text(cfg.algo.upper() + "\n")
+        (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2) + "\n")
+    finally:
+        venv.close()
+        eval_env.close()
+    return model
