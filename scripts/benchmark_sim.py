@@ -8,9 +8,12 @@ lives in :mod:`hairbrush_env.rods`; this script only sweeps parameters and forma
 from __future__ import annotations
 
 import argparse
+import time
 from collections.abc import Callable, Sequence
 
-from hairbrush_env import rods
+import numpy as np
+
+from hairbrush_env import hair, rods, scene
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -57,7 +60,116 @@ def section_rod_convergence(args: argparse.Namespace) -> None:
     print(_table(["edges/turn", "edges", "stiffness err %", "abs length err %", "steps/s"], rows))
 
 
-SECTIONS: list[Callable[[argparse.Namespace], None]] = [section_rod_convergence]
+def _timed_sim(wig: hair.WigConfig, **cfg: object) -> tuple[scene.BrushingSim, float, float, float]:
+    """Build a sim; return it with build time, cold (shake) reset time and cached reset time [s]."""
+    t0 = time.perf_counter()
+    sim = scene.BrushingSim(scene.SceneConfig(wig=wig, **cfg))
+    t1 = time.perf_counter()
+    sim.reset(0)
+    t2 = time.perf_counter()
+    sim.reset(0)
+    t3 = time.perf_counter()
+    return sim, t1 - t0, t2 - t1, t3 - t2
+
+
+def _stroke_rtf(sim: scene.BrushingSim, fraction: float) -> tuple[float, float, scene.StrokeResult]:
+    t0 = time.perf_counter()
+    res = sim.stroke(fraction, force_threshold=np.inf, rng=np.random.default_rng(0))
+    wall = time.perf_counter() - t0
+    steps = res.sim_time / sim.model.opt.timestep
+    return res.sim_time / wall, steps / wall, res
+
+
+def section_wig_scaling(args: argparse.Namespace) -> None:
+    """Real-time factor and steps/s of the full scene (arm + brush + head + wig) vs strand count and edges."""
+    base = hair.PRESETS[hair.DEFAULT_WIG]
+    counts = (8, 24) if args.quick else (8, 16, 24, 32, 48)
+    print(
+        f"\n## Scene speed vs strand count: wig '{base.name}' (R/P = {base.curliness}), dt = 5 ms, one thread\n"
+    )
+    print(
+        "RTF and steps/s over a full stroke (approach, insertion, pull at 0.1 m/s, retraction) with hair-hair"
+    )
+    print("contact; reset = pre-brushed shake + settle (cold) vs restoring the cached state.\n")
+    rows = []
+    for n in counts:
+        wig = base.replace(n_strands=n, n_triples=2)
+        sim, t_build, t_cold, t_cached = _timed_sim(wig)
+        rtf, sps, res = _stroke_rtf(sim, 1.0)
+        rows.append(
+            [
+                str(n),
+                str(wig.n_edges + 1),
+                str(sim.model.nv),
+                f"{rtf:.2f}",
+                f"{sps:,.0f}",
+                f"{t_build:.1f}",
+                f"{t_cold:.2f}",
+                f"{1e3 * t_cached:.1f}",
+                str(res.diverged),
+            ]
+        )
+        sim.close()
+    print(
+        _table(
+            [
+                "strands",
+                "vertices/strand",
+                "nv",
+                "RTF",
+                "steps/s",
+                "build s",
+                "cold reset s",
+                "cached reset ms",
+                "diverged",
+            ],
+            rows,
+        )
+    )
+
+    edges = (12, 24) if args.quick else (12, 18, 24, 30)
+    print(f"\n## Scene speed vs vertices per strand: {base.n_strands} strands of '{base.name}', dt = 5 ms\n")
+    rows = []
+    for e in edges:
+        wig = base.replace(min_edges=e, max_edges=e)
+        sim, _, t_cold, _ = _timed_sim(wig)
+        rtf, sps, res = _stroke_rtf(sim, 1.0)
+        rows.append(
+            [str(e + 1), str(sim.model.nv), f"{rtf:.2f}", f"{sps:,.0f}", f"{t_cold:.2f}", str(res.diverged)]
+        )
+        sim.close()
+    print(_table(["vertices/strand", "nv", "RTF", "steps/s", "cold reset s", "diverged"], rows))
+
+
+def section_force_table(args: argparse.Namespace) -> None:
+    """Maximum brushing force vs curliness and normalized stroke length b_l (thesis Fig. 3.7)."""
+    names = ["straight", "curly", "coily"] if args.quick else list(hair.PRESETS)
+    fractions = (0.5, 1.0) if args.quick else (0.33, 0.67, 1.0)
+    print("\n## Max brushing force [N] vs curliness and b_l (seed 0, 0.1 m/s, no abort; thesis F_T = 10 N)\n")
+    rows = []
+    for name in names:
+        wig = hair.PRESETS[name]
+        row = [name, f"{wig.curliness:.2f}", f"{wig.length:.2f}"]
+        for b in fractions:
+            sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
+            sim.reset(0)
+            e0 = sim.entanglement()
+            res = sim.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
+            row.append(
+                f"{res.max_force:.2f} ({e0:.1f}→{sim.entanglement():.1f})" + (" DIV" if res.diverged else "")
+            )
+            sim.close()
+        rows.append(row)
+    print(
+        _table(["wig", "R/P", "length m"] + [f"b_l={b} F_max (Σ|Lk| before→after)" for b in fractions], rows)
+    )
+
+
+SECTIONS: list[Callable[[argparse.Namespace], None]] = [
+    section_rod_convergence,
+    section_wig_scaling,
+    section_force_table,
+]
 
 
 def main(argv: Sequence[str] | None = None) -> None:

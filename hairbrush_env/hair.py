@@ -1,0 +1,722 @@
+"""Procedural wigs: curled, topologically entangled hair wisps as MuJoCo discrete elastic rods.
+
+Model (thesis chapter 2 minimal model, used for the wigs of chapter 3)
+----------------------------------------------------------------------
+A wig is a set of *groups*, each a bundle of 2 (pair) or 3 (triple) strands that are **entwined**: they are
+coaxial homochiral helices of the wig's curl radius ``R`` and pitch ``P``, phase-shifted by ``2π/k`` about a
+common axis. Two such helices with ``N`` shared turns have open-curve link ``Lk ≈ N`` (one link per pitch, the
+double helix of Fig. 2.2 / 3.2a), so the ground truth link of every entwined pair is the number of turns they
+share, and ``q₀ = l₀ / P`` (eq. 3.2) per pair. The curliness of the wig is ``R_C = R / P`` (eq. 3.1).
+
+Strands of *different* groups must not be linked. For two vertical helices of equal ``R, P`` with axes ``d``
+apart and phase difference ``Δφ``, the horizontal vector between points at equal height is
+``D + c·e(φ(z) + ψ)`` with ``|D| = d`` and ``c = 2R sin(Δφ/2)``: it winds around the origin (``Lk ≈ N``) iff
+``c > d`` and otherwise only wobbles (``Lk ≈ 0``); its length never drops below ``|d − c|``. The group axes are
+therefore put on a square lattice with alternating phase offsets (0, π/2 — a checkerboard, which lowers the
+largest cross-group ``c`` from ``2R`` to ``√2 R``) and the lattice spacing is the smallest one for which every
+cross-group pair of rest curves is unlinked and at least ``2r + root_gap`` apart (checked numerically by
+:func:`wig_layout`). Entanglement is thus purely topological and known exactly at build time.
+
+Wisp scaling (guide strands standing for a lock of hair)
+--------------------------------------------------------
+Real hair (``r_h ≈ 40 µm``, ``E_h ≈ 4 GPa``) is far too thin and stiff-per-mass for a millisecond step. A wisp
+of radius ``r_w`` stands for ``n = (r_w / r_h)²`` hairs (same mass per length with the keratin density); for
+the bending stiffness of ``n`` uncoupled hairs, ``n E_h r_h⁴ = E_w r_w⁴`` gives ``E_w = E_h (r_h / r_w)²``.
+The default ``r_w = 0.8 mm`` stands for 400 hairs with ``E_w = 4 GPa / 400 = 10 MPa`` (:func:`wisp_young`), so a
+24-wisp wig is a ~10 000-hair section of a head (the part under the brush). Wisps are discretized with
+:attr:`WigConfig.edges_per_turn` edges per curl turn (6 by default: enough for the link to equal the number of
+turns and for contact, not for < 5 % spring stiffness — see :mod:`hairbrush_env.rods`); the number of turns per
+wisp is therefore limited (a wisp turn stands for many real curl turns), which is the price of real time.
+
+Pre-brushed state (thesis §3.4: wigs are turned upside down and shaken for 10–15 s)
+-----------------------------------------------------------------------------------
+:func:`shake` moves the head in the hair's frame: shaking the scalp with acceleration ``a(t)`` is *exactly*
+equivalent, in the head frame, to a uniform inertial body force ``−m a(t)`` on every hair vertex, applied through
+``xfrc_applied``. ``a(t)`` is a seeded sum of sinusoids (mostly horizontal, with vertical components that
+briefly unload gravity), followed by a settling phase. The result depends only on (wig, seed, model), so it is
+cached (:class:`StateCache`, in memory and optionally on disk) as the full MuJoCo state
+(``mjSTATE_INTEGRATION``, which includes ``mjSTATE_PLASTIC``, the rods' reference frames).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import math
+import os
+import tempfile
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from . import collision, rods
+from .topology import linking_number
+from .topology._kernels import min_segment_distance
+
+__all__ = [
+    "DEFAULT_WIG",
+    "HAIR_RGBA",
+    "PRESETS",
+    "Entanglement",
+    "StateCache",
+    "WigConfig",
+    "WigLayout",
+    "add_wig",
+    "entanglement",
+    "get_wig",
+    "min_distance_matrix",
+    "shake",
+    "wig_layout",
+    "wisp_young",
+]
+
+HAIR_RGBA = (0.30, 0.17, 0.08, 1.0)
+"""Medium brown: dark enough to stand out against the light backdrop of the scene's ``webcam``."""
+
+REAL_HAIR_RADIUS = 40e-6
+"""Radius of a human scalp hair [m] (thesis: r is approximately constant for human hair)."""
+
+REAL_HAIR_YOUNG = 4e9
+"""Young's modulus of keratin hair [Pa]."""
+
+# Contact parameters for thin rods. rods.py measured rod-rod penetration ≤ 10 µm with solref 0.004 for free
+# rods, but a wisp trapped between bristles is held by its (much stiffer, 1e-4) edge equality, and the solver then
+# lets the 0.004 contact yield: strands were pulled through 1.5 mm bristles (centerline distance 0). With 1e-3
+# (and refsafe disabled by the scene, which would otherwise soften it back to ~2 dt) the hair–bristle centerline
+# distance stayed ≥ 0.7 mm (> the 1.15 mm half-sum of radii in most samples; see the scene tests).
+CONTACT_SOLREF = (1e-3, 1.0)
+CONTACT_SOLIMP = (0.95, 0.99, 1e-4, 0.5, 2.0)
+
+
+def wisp_young(
+    strand_radius: float, *, hair_radius: float = REAL_HAIR_RADIUS, hair_young: float = REAL_HAIR_YOUNG
+):
+    """Young's modulus of a wisp of radius ``strand_radius`` that bends like ``(r_w/r_h)²`` uncoupled hairs.
+
+    Equal mass per length and equal total bending stiffness: ``E_w = E_h (r_h / r_w)²`` (module docstring).
+    """
+    return hair_young * (hair_radius / strand_radius) ** 2
+
+
+# ------------------------------------------------------------------------------------------------ config
+def _require(cond: bool, field_name: str, msg: str, value: object) -> None:
+    if not cond:
+        raise ValueError(f"WigConfig.{field_name} {msg}, got {value!r}")
+
+
+def _finite(x: object) -> bool:
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(float(x))
+
+
+@dataclass(frozen=True)
+class WigConfig:
+    """Geometry, material and preparation of one wig (all lengths in metres).
+
+    Parameters
+    ----------
+    name : str
+        Preset name or a label for a custom wig (part of the cache key).
+    curliness : float
+        ``R_C = R / P`` (thesis eq. 3.1), in ``[0, 1]``; 0 = straight strands.
+    curl_radius : float
+        Helix radius ``R`` of every strand's rest shape (ignored for ``curliness = 0``). The pitch is
+        ``P = R / R_C``.
+    length : float
+        Arc length of a strand (hair length pulled straight). The hanging (axial) length of the rest shape is
+        ``length / √(1 + (2π R_C)²)``.
+    n_strands : int
+        Number of wisps (≥ 2); ``n_strands − 3·n_triples`` must be even (the rest are pairs).
+    n_triples : int
+        Number of 3-strand groups (the thesis sees mostly pairs and a few triples, Fig. 2.1d).
+    strand_radius : float
+        Wisp radius ``r_w`` (contact, mass and stiffness).
+    young : float or None
+        Young's modulus of a wisp [Pa]; ``None`` = :func:`wisp_young` (``E_h (r_h / r_w)²``).
+    density : float
+        Mass density [kg/m³] (keratin ≈ 1300).
+    damping : float
+        Rayleigh damping of bending/torsion [s].
+    friction : float
+        Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
+    edges_per_turn : int
+        Edges per curl turn (≥ 4; the Gauss link of polygonal helices equals the turn count from 4 on).
+    min_edges, max_edges : int
+        Bounds of the per-strand edge count (straight strands use ``min_edges``).
+    handedness : {+1, -1}
+        Chirality shared by all strands (homochiral, thesis chapter 2).
+    root_gap : float
+        Minimum surface gap between strands of different groups in the rest layout.
+    min_spacing : float
+        Minimum lattice spacing of group axes (sets the volume of straight wigs).
+    shake_seconds : float
+        Simulated shaking time of the pre-brushed preparation (thesis: 10–15 s by hand; see :func:`shake`).
+    settle_seconds : float
+        Simulated settling time after shaking.
+    shake_accel : float
+        RMS-scale amplitude of the horizontal shaking acceleration [m/s²].
+    shake_frequency : float
+        Mean shaking frequency [Hz].
+    rgba : tuple of float
+        Hair colour.
+    """
+
+    name: str = "custom"
+    curliness: float = 0.5
+    curl_radius: float = 0.008
+    length: float = 0.20
+    n_strands: int = 24
+    n_triples: int = 2
+    strand_radius: float = 8e-4
+    young: float | None = None
+    density: float = 1300.0
+    damping: float = 0.02
+    friction: float = 0.3
+    edges_per_turn: int = 6
+    min_edges: int = 12
+    max_edges: int = 24
+    handedness: int = 1
+    root_gap: float = 1.5e-3
+    min_spacing: float = 6e-3
+    shake_seconds: float = 1.0
+    settle_seconds: float = 1.0
+    shake_accel: float = 6.0
+    shake_frequency: float = 3.0
+    rgba: tuple[float, float, float, float] = HAIR_RGBA
+
+    def __post_init__(self) -> None:
+        _require(
+            isinstance(self.name, str) and bool(self.name), "name", "must be a non-empty string", self.name
+        )
+        for f in (
+            "curliness",
+            "curl_radius",
+            "length",
+            "strand_radius",
+            "density",
+            "damping",
+            "friction",
+            "root_gap",
+            "min_spacing",
+            "shake_seconds",
+            "settle_seconds",
+            "shake_accel",
+            "shake_frequency",
+        ):
+            _require(_finite(getattr(self, f)), f, "must be a finite number", getattr(self, f))
+        _require(0.0 <= self.curliness <= 1.0, "curliness", "(R/P) must be in [0, 1]", self.curliness)
+        _require(self.curl_radius > 0.0, "curl_radius", "must be > 0", self.curl_radius)
+        _require(self.length > 0.0, "length", "must be > 0", self.length)
+        _require(self.strand_radius > 0.0, "strand_radius", "must be > 0", self.strand_radius)
+        if self.young is not None:
+            _require(_finite(self.young) and self.young > 0.0, "young", "must be > 0 or None", self.young)
+        _require(self.density > 0.0, "density", "must be > 0", self.density)
+        for f in ("damping", "friction", "root_gap", "shake_seconds", "settle_seconds", "shake_accel"):
+            _require(getattr(self, f) >= 0.0, f, "must be >= 0", getattr(self, f))
+        _require(self.min_spacing > 0.0, "min_spacing", "must be > 0", self.min_spacing)
+        _require(self.shake_frequency > 0.0, "shake_frequency", "must be > 0", self.shake_frequency)
+        for f in ("n_strands", "n_triples", "edges_per_turn", "min_edges", "max_edges"):
+            v = getattr(self, f)
+            _require(isinstance(v, (int, np.integer)) and not isinstance(v, bool), f, "must be an integer", v)
+        _require(self.n_strands >= 2, "n_strands", "must be >= 2", self.n_strands)
+        _require(self.n_triples >= 0, "n_triples", "must be >= 0", self.n_triples)
+        rest = self.n_strands - 3 * self.n_triples
+        _require(
+            rest >= 0 and rest % 2 == 0,
+            "n_triples",
+            f"must leave an even, non-negative number of strands for pairs (n_strands={self.n_strands})",
+            self.n_triples,
+        )
+        _require(self.edges_per_turn >= 4, "edges_per_turn", "must be >= 4", self.edges_per_turn)
+        _require(self.min_edges >= 2, "min_edges", "must be >= 2", self.min_edges)
+        _require(self.max_edges >= self.min_edges, "max_edges", "must be >= min_edges", self.max_edges)
+        _require(self.handedness in (1, -1), "handedness", "must be +1 or -1", self.handedness)
+        _require(len(self.rgba) == 4, "rgba", "must have 4 entries", self.rgba)
+        if self.curliness > 0.0:
+            # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).
+            _require(
+                self.pitch > 4.0 * self.strand_radius,
+                "curl_radius",
+                f"gives a pitch P = R/R_C = {self.pitch:.4g} m below 4 strand radii",
+                self.curl_radius,
+            )
+            _require(
+                self.curl_radius > 2.0 * self.strand_radius,
+                "curl_radius",
+                "must exceed 2 strand radii (entwined strands sit 2R apart)",
+                self.curl_radius,
+            )
+
+    # ---------------------------------------------------------------------------------------- derived
+    @property
+    def pitch(self) -> float:
+        """Helix pitch ``P = R / R_C`` [m] (``inf`` for straight hair)."""
+        return self.curl_radius / self.curliness if self.curliness > 0 else math.inf
+
+    @property
+    def arc_per_turn(self) -> float:
+        """Arc length of one curl turn ``√((2πR)² + P²)``."""
+        return math.hypot(2.0 * math.pi * self.curl_radius, self.pitch) if self.curliness > 0 else math.inf
+
+    @property
+    def turns(self) -> float:
+        """Curl turns per strand = link of every entwined pair (``q₀ = l₀/P``, eq. 3.2, with the axial length)."""
+        return self.length / self.arc_per_turn if self.curliness > 0 else 0.0
+
+    @property
+    def hanging_length(self) -> float:
+        """Axial (vertical) extent of the rest shape [m]."""
+        return self.turns * self.pitch if self.curliness > 0 else self.length
+
+    @property
+    def n_edges(self) -> int:
+        """Edges per strand: ``edges_per_turn`` per turn, clipped to ``[min_edges, max_edges]``."""
+        return int(min(self.max_edges, max(self.min_edges, math.ceil(self.edges_per_turn * self.turns))))
+
+    @property
+    def n_groups(self) -> int:
+        return self.n_triples + (self.n_strands - 3 * self.n_triples) // 2
+
+    @property
+    def young_modulus(self) -> float:
+        """Young's modulus actually used [Pa]."""
+        return wisp_young(self.strand_radius) if self.young is None else float(self.young)
+
+    def replace(self, **changes: object) -> WigConfig:
+        """A copy with ``changes`` applied (validated)."""
+        return dataclasses.replace(self, **changes)
+
+    def digest(self) -> str:
+        """Stable hash of all fields (for cache keys)."""
+        blob = json.dumps(dataclasses.asdict(self), sort_keys=True, default=float)
+        return hashlib.sha256(blob.encode()).hexdigest()[:16]
+
+
+# Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
+# hanging (curl "shrinkage" = 1 − 1/√(1 + (2πR_C)²)) even where the pulled-straight length is similar.
+PRESETS: Mapping[str, WigConfig] = {
+    "straight": WigConfig(name="straight", curliness=0.0, length=0.30, min_edges=14),
+    "wavy": WigConfig(name="wavy", curliness=0.15, curl_radius=0.012, length=0.28),
+    "loose_curl": WigConfig(name="loose_curl", curliness=0.3, curl_radius=0.012, length=0.26),
+    "curly": WigConfig(name="curly", curliness=0.5, curl_radius=0.011, length=0.22),
+    "tight_curl": WigConfig(name="tight_curl", curliness=0.65, curl_radius=0.0095, length=0.20),
+    "coily": WigConfig(name="coily", curliness=0.8, curl_radius=0.008, length=0.18),
+}
+"""Named wigs, ordered straightest → curliest (``R_C`` 0 → 0.8)."""
+
+DEFAULT_WIG = "curly"
+
+
+def get_wig(wig: str | WigConfig) -> WigConfig:
+    """Resolve a preset name (or pass a :class:`WigConfig` through).
+
+    Raises
+    ------
+    ValueError
+        Unknown preset name (the message lists the valid names).
+    """
+    if isinstance(wig, WigConfig):
+        return wig
+    if isinstance(wig, str) and wig in PRESETS:
+        return PRESETS[wig]
+    raise ValueError(f"wig: unknown preset {wig!r}; valid names: {', '.join(PRESETS)}")
+
+
+# ------------------------------------------------------------------------------------------------ layout
+@dataclass(frozen=True)
+class WigLayout:
+    """Rest geometry and ground-truth topology of a wig (coordinates in the root-plane frame: z up, roots at z=0).
+
+    Attributes
+    ----------
+    wig : WigConfig
+    names : tuple of str
+        Flex (rod) name of every strand.
+    groups : tuple of tuple of int
+        Strand indices of each entwined group (pairs and triples).
+    axes : np.ndarray
+        ``(n_groups, 2)`` horizontal positions of the group axes.
+    roots : np.ndarray
+        ``(n_strands, 3)`` root positions.
+    curves : tuple of np.ndarray
+        Rest centerline of every strand, ``(n_edges + 1, 3)``.
+    pairs : np.ndarray
+        ``(n_pairs, 2)`` entwined strand pairs (all pairs within each group).
+    pair_link : np.ndarray
+        Open-curve Gauss link of each entwined pair in the rest shape (≈ ``± wig.turns``).
+    spacing : float
+        Lattice spacing of the group axes.
+    turns : float
+        Curl turns of the discretized (polygonal) strands, whose length is exactly ``wig.length``.
+    min_cross_distance : float
+        Smallest centerline distance between strands of different groups at rest.
+    max_cross_link : float
+        Largest ``|Lk|`` between strands of different groups at rest (should be ≪ 0.5).
+    """
+
+    wig: WigConfig
+    names: tuple[str, ...]
+    groups: tuple[tuple[int, ...], ...]
+    axes: np.ndarray
+    roots: np.ndarray
+    curves: tuple[np.ndarray, ...]
+    pairs: np.ndarray
+    pair_link: np.ndarray
+    spacing: float
+    turns: float
+    min_cross_distance: float
+    max_cross_link: float
+
+    @property
+    def n_links(self) -> float:
+        """Total ground-truth link ``Σ |Lk|`` over entwined pairs at rest."""
+        return float(np.abs(self.pair_link).sum())
+
+    @property
+    def extent(self) -> tuple[np.ndarray, np.ndarray]:
+        """Axis-aligned bounding box ``(lo, hi)`` of the rest curves."""
+        allp = np.vstack(self.curves)
+        return allp.min(axis=0), allp.max(axis=0)
+
+
+def _strand_curve(axis: np.ndarray, phase: float, wig: WigConfig, radius: float, turns: float) -> np.ndarray:
+    n = wig.n_edges
+    if wig.curliness > 0:
+        # Uniform in z is uniform in arc length on a helix, so all edges have the same rest length.
+        depth = np.linspace(0.0, turns * wig.pitch, n + 1)
+        phi = phase + wig.handedness * 2.0 * math.pi * depth / wig.pitch
+    else:
+        depth = np.linspace(0.0, wig.length, n + 1)
+        phi = np.full(n + 1, phase)
+    return np.column_stack([axis[0] + radius * np.cos(phi), axis[1] + radius * np.sin(phi), -depth])
+
+
+def _polygon_turns(wig: WigConfig) -> float:
+    """Turns of the *polygonal* helix (``n_edges`` chords) whose length is ``wig.length``.
+
+    Chords are shorter than the arcs they cut (by ~ (Δφ)²/24 per edge, 3 % at 6 edges per turn), so the polygon
+    gets slightly more turns than :attr:`WigConfig.turns` to keep the configured strand length.
+    """
+    if wig.curliness == 0:
+        return 0.0
+    n, r, p = wig.n_edges, wig.curl_radius, wig.pitch
+    turns = wig.turns
+    for _ in range(50):
+        dphi = 2.0 * math.pi * turns / n
+        chord = math.hypot(2.0 * r * math.sin(0.5 * dphi), p * turns / n)
+        new = turns * wig.length / (n * chord)
+        if abs(new - turns) < 1e-13 * turns:
+            break
+        turns = new
+    return turns
+
+
+def _grid(n: int) -> tuple[list[tuple[int, int]], int, int]:
+    # Rows along x (towards the brush), columns along y (across the brush): wider than deep, so that the
+    # 25 mm bristles reach through the curtain.
+    rows = max(1, round(math.sqrt(n / 1.5)))
+    cols = math.ceil(n / rows)
+    return [divmod(k, cols) for k in range(n)], rows, cols
+
+
+def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
+    """Place the entwined groups on the scalp and compute the rest curves and ground-truth links.
+
+    The lattice spacing starts at ``max(min_spacing, √2 R + 2r + root_gap)`` and grows by 5 % until every
+    cross-group pair of rest curves is at least ``2r + root_gap`` apart and unlinked (``|Lk| < 0.4``, the
+    thesis's link-interaction threshold of Fig. 2.5b).
+    """
+    groups: list[tuple[int, ...]] = []
+    k = 0
+    for g in range(wig.n_groups):
+        size = 3 if g < wig.n_triples else 2
+        groups.append(tuple(range(k, k + size)))
+        k += size
+    cells, rows, cols = _grid(len(groups))
+    r = wig.strand_radius
+    # Straight hair: the two strands of a group hang side by side, one hair diameter apart (R_eff = 1.5 r... 2 r).
+    radius = wig.curl_radius if wig.curliness > 0 else 2.0 * r
+    phases: list[float] = []
+    for g, members in enumerate(groups):
+        i, j = cells[g]
+        offset = 0.5 * math.pi * ((i + j) % 2)  # checkerboard: neighbours differ by π/2 (module docstring)
+        phases.extend(offset + 2.0 * math.pi * m / len(members) for m in range(len(members)))
+    owner = np.array([g for g, members in enumerate(groups) for _ in members])
+    need = 2.0 * r + wig.root_gap
+    turns = _polygon_turns(wig)
+    spacing = max(wig.min_spacing, math.sqrt(2.0) * radius + need)
+    for _ in range(60):
+        axes = np.array(
+            [[(i - 0.5 * (rows - 1)) * spacing, (j - 0.5 * (cols - 1)) * spacing] for i, j in cells]
+        )
+        curves = [_strand_curve(axes[owner[s]], phases[s], wig, radius, turns) for s in range(wig.n_strands)]
+        dmin, lkmax = math.inf, 0.0
+        for a in range(wig.n_strands):
+            for b in range(a + 1, wig.n_strands):
+                if (
+                    owner[a] == owner[b]
+                    or np.linalg.norm(axes[owner[a]] - axes[owner[b]]) > 2 * radius + 3 * need
+                ):
+                    continue  # far groups cannot touch or link
+                dmin = min(dmin, float(min_segment_distance(curves[a], curves[b])))
+                if wig.curliness > 0:
+                    lkmax = max(lkmax, abs(linking_number(curves[a], curves[b], closed=False)))
+        if dmin >= need and lkmax < 0.4:
+            break
+        spacing *= 1.05
+    else:  # pragma: no cover - the lattice always separates eventually
+        raise RuntimeError("wig_layout: could not separate the groups")
+    pairs = np.array(
+        [(m[a], m[b]) for m in groups for a in range(len(m)) for b in range(a + 1, len(m))], dtype=int
+    )
+    links = np.array([linking_number(curves[i], curves[j], closed=False) for i, j in pairs])
+    names = tuple(f"{prefix}{s}" for s in range(wig.n_strands))
+    for c in curves:
+        c.setflags(write=False)
+    return WigLayout(
+        wig=wig,
+        names=names,
+        groups=tuple(groups),
+        axes=axes,
+        roots=np.array([c[0] for c in curves]),
+        curves=tuple(curves),
+        pairs=pairs,
+        pair_link=links,
+        spacing=spacing,
+        turns=turns,
+        min_cross_distance=dmin,
+        max_cross_link=lkmax,
+    )
+
+
+def add_wig(
+    spec: mujoco.MjSpec,
+    wig: str | WigConfig,
+    *,
+    parent_body: mujoco.MjsBody | str,
+    root_offset: Sequence[float] = (0.0, 0.0, 0.0),
+    prefix: str = "hair",
+    hair_hair: bool = True,
+) -> WigLayout:
+    """Add every strand of ``wig`` as a clamped rod under ``parent_body``.
+
+    Parameters
+    ----------
+    spec : mujoco.MjSpec
+        Target spec (call :func:`hairbrush_env.rods.configure_rod_options` on it too).
+    wig : str or WigConfig
+        Preset name or config.
+    parent_body : MjsBody or str
+        Body holding the roots (e.g. the head's ``scalp``); its frame must have z up.
+    root_offset : sequence of float
+        Position of the root plane's centre in ``parent_body`` coordinates (e.g. the scalp site).
+    prefix : str
+        Strand names are ``<prefix><k>``.
+    hair_hair : bool
+        Hair–hair contact (``conaffinity`` includes HAIR). Without it strands pass through each other.
+
+    Returns
+    -------
+    WigLayout
+        The layout (in root-plane coordinates; add ``root_offset`` and the parent pose for world coordinates).
+    """
+    cfg = get_wig(wig)
+    layout = wig_layout(cfg, prefix=prefix)
+    off = np.asarray(root_offset, dtype=float).reshape(3)
+    contype, conaffinity = collision.HAIR_GEOM_SELF_COLLIDING if hair_hair else collision.HAIR_GEOM
+    for name, curve in zip(layout.names, layout.curves, strict=True):
+        rods.add_rod(
+            spec,
+            rods.RodSpec(
+                name=name,
+                points=curve + off,
+                radius=cfg.strand_radius,
+                young=cfg.young_modulus,
+                density=cfg.density,
+                damping=cfg.damping,
+                friction=cfg.friction,
+                rgba=cfg.rgba,
+                contype=contype,
+                conaffinity=conaffinity,
+                condim=3,
+                contact_solref=CONTACT_SOLREF,
+                contact_solimp=CONTACT_SOLIMP,
+            ),
+            parent=parent_body,
+        )
+    return layout
+
+
+# ------------------------------------------------------------------------------------------ entanglement
+class Entanglement:
+    """Ground-truth entanglement of a compiled wig: ``Σ |open Lk|`` over its entwined pairs.
+
+    Parameters
+    ----------
+    model : mujoco.MjModel
+    layout : WigLayout
+        Layout returned by :func:`add_wig` (names and pairs).
+    """
+
+    def __init__(self, model: mujoco.MjModel, layout: WigLayout) -> None:
+        self.layout = layout
+        self.views = [rods.RodView(model, n) for n in layout.names]
+        self.pairs = layout.pairs
+
+    def curves(self, data: mujoco.MjData) -> list[np.ndarray]:
+        """Current centerlines of all strands."""
+        return [v.vertices(data) for v in self.views]
+
+    def pair_links(self, data: mujoco.MjData, curves: list[np.ndarray] | None = None) -> np.ndarray:
+        """Open-curve Gauss link of every entwined pair (signed)."""
+        c = self.curves(data) if curves is None else curves
+        return np.array([linking_number(c[i], c[j], closed=False) for i, j in self.pairs])
+
+    def __call__(self, data: mujoco.MjData) -> float:
+        return float(np.abs(self.pair_links(data)).sum())
+
+
+def entanglement(model: mujoco.MjModel, data: mujoco.MjData, layout: WigLayout) -> float:
+    """One-off ``Σ |open Lk|`` over entwined pairs (build an :class:`Entanglement` once for loops)."""
+    return Entanglement(model, layout)(data)
+
+
+def min_distance_matrix(curves: Sequence[np.ndarray]) -> np.ndarray:
+    """Symmetric matrix of minimum centerline (segment–segment) distances between polylines (inf diagonal)."""
+    n = len(curves)
+    out = np.full((n, n), np.inf)
+    for a in range(n):
+        for b in range(a + 1, n):
+            out[a, b] = out[b, a] = float(min_segment_distance(curves[a], curves[b]))
+    return out
+
+
+# ------------------------------------------------------------------------------------------ shake & cache
+def shake_acceleration(wig: WigConfig, seed: int, t: np.ndarray) -> np.ndarray:
+    """The seeded head acceleration ``a(t)`` [m/s²] of the pre-brushed preparation, shape ``(len(t), 3)``.
+
+    Three sinusoids per axis with random frequencies around ``shake_frequency`` and random phases; the horizontal
+    amplitude is ``shake_accel``, the vertical one half of it (it unloads gravity without turning the hair over,
+    which would drive the strands into the skull). A raised-cosine envelope starts and ends the shake smoothly.
+    """
+    rng = np.random.default_rng(np.random.SeedSequence([int(seed), 0x5A4E]))
+    t = np.asarray(t, dtype=float)
+    out = np.zeros((t.size, 3))
+    amp = wig.shake_accel * np.array([1.0, 1.0, 0.5]) / math.sqrt(3.0 / 2.0)
+    for ax in range(3):
+        f = wig.shake_frequency * rng.uniform(0.6, 1.6, 3)
+        ph = rng.uniform(0.0, 2.0 * math.pi, 3)
+        out[:, ax] = amp[ax] * np.sin(2.0 * math.pi * f[None, :] * t[:, None] + ph[None, :]).sum(axis=1)
+    if wig.shake_seconds > 0:
+        env = np.clip(np.minimum(t, wig.shake_seconds - t) / min(0.2, 0.5 * wig.shake_seconds), 0.0, 1.0)
+        out *= (0.5 - 0.5 * np.cos(math.pi * env))[:, None]
+    return out
+
+
+def shake(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    wig: WigConfig,
+    seed: int,
+    *,
+    strand_bodies: np.ndarray,
+    on_step: object = None,
+) -> None:
+    """Run the seeded pre-brushed preparation in place (shake, then settle under gravity).
+
+    Parameters
+    ----------
+    strand_bodies : np.ndarray
+        Body ids of the moving hair vertices (they receive ``−m a(t)`` through ``xfrc_applied``).
+    on_step : callable, optional
+        ``on_step(model, data)`` after every step (e.g. to hold the arm's servo targets).
+    """
+    dt = model.opt.timestep
+    n_shake = round(wig.shake_seconds / dt)
+    n_settle = round(wig.settle_seconds / dt)
+    acc = shake_acceleration(wig, seed, np.arange(n_shake) * dt)
+    mass = model.body_mass[strand_bodies][:, None]
+    for k in range(n_shake):
+        data.xfrc_applied[strand_bodies, :3] = -mass * acc[k][None, :]
+        mujoco.mj_step(model, data)
+        if on_step is not None:
+            on_step(model, data)  # type: ignore[operator]
+    data.xfrc_applied[strand_bodies, :3] = 0.0
+    for _ in range(n_settle):
+        mujoco.mj_step(model, data)
+        if on_step is not None:
+            on_step(model, data)  # type: ignore[operator]
+
+
+STATE_SPEC = mujoco.mjtState.mjSTATE_INTEGRATION
+"""What is cached: the full integration state (time, qpos, qvel, act, ctrl, warm start, ..., incl. PLASTIC)."""
+
+
+@dataclass
+class StateCache:
+    """Settled wig states per (wig digest, seed, model hash), in memory and optionally on disk.
+
+    Parameters
+    ----------
+    directory : str or Path, optional
+        If given, states are also written as ``<wig>-<digest>-s<seed>-<model>.npy`` (atomically) and read back by
+        later processes.
+    """
+
+    directory: str | Path | None = None
+    _memory: dict[tuple[str, int, str], np.ndarray] = field(default_factory=dict, repr=False)
+
+    @staticmethod
+    def model_hash(model: mujoco.MjModel) -> str:
+        """SHA-256 (16 hex) of the compiled model's binary."""
+        buf = np.zeros(mujoco.mj_sizeModel(model), dtype=np.uint8)
+        mujoco.mj_saveModel(model, None, buf)
+        return hashlib.sha256(buf.tobytes()).hexdigest()[:16]
+
+    def _path(self, wig: WigConfig, seed: int, model_hash: str) -> Path | None:
+        if self.directory is None:
+            return None
+        return Path(self.directory) / f"{wig.name}-{wig.digest()}-s{int(seed)}-{model_hash}.npy"
+
+    def get(self, wig: WigConfig, seed: int, model_hash: str) -> np.ndarray | None:
+        key = (wig.digest(), int(seed), model_hash)
+        if key in self._memory:
+            return self._memory[key]
+        path = self._path(wig, seed, model_hash)
+        if path is not None and path.is_file():
+            state = np.load(path)
+            self._memory[key] = state
+            return state
+        return None
+
+    def put(self, wig: WigConfig, seed: int, model_hash: str, state: np.ndarray) -> None:
+        state = np.array(state, dtype=float)
+        state.setflags(write=False)
+        self._memory[(wig.digest(), int(seed), model_hash)] = state
+        path = self._path(wig, seed, model_hash)
+        if path is not None:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npy.tmp")
+            with os.fdopen(fd, "wb") as fh:
+                np.save(fh, state)
+            os.replace(tmp, path)
+
+    def clear(self) -> None:
+        """Forget the in-memory states (files stay)."""
+        self._memory.clear()
+
+
+def get_state(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
+    """Full integration state (incl. plastic rod frames) of ``data``."""
+    out = np.empty(mujoco.mj_stateSize(model, STATE_SPEC))
+    mujoco.mj_getState(model, data, out, STATE_SPEC)
+    return out
+
+
+def set_state(model: mujoco.MjModel, data: mujoco.MjData, state: np.ndarray) -> None:
+    """Restore a state from :func:`get_state` and recompute derived quantities (``mj_forward``)."""
+    mujoco.mj_setState(model, data, np.asarray(state, dtype=float), STATE_SPEC)
+    mujoco.mj_forward(model, data)

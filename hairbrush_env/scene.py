@@ -1,0 +1,585 @@
+"""The brushing scene (thesis §3.4, Fig. 3.5): arm + sensorized brush + head mount + wig + fixed webcam.
+
+* :func:`build_scene` composes the MJCF parts (``assets/arm``, ``assets/brush``, ``assets/head``) and a wig
+  (:mod:`hairbrush_env.hair`) into one :class:`mujoco.MjSpec`.
+* The head stands on a **variable-height mount** (thesis: "the head is mounted on a variable height mount such that
+  the bottom of the hair is kept in a fixed location relative to the robot and camera"): it is shifted vertically
+  so that the rest shape's free ends sit at ``SceneConfig.free_end_z`` whatever the wig's hanging length.
+* The ``webcam`` is fixed in the world, looking at the hair from the side (−y) against a light backdrop, so the
+  same framing holds for every wig (thesis: the webcam is fixed relative to the free ends).
+* :class:`BrushingSim` compiles the scene **once**, owns model/data, the Cartesian controller and the 10 Hz load
+  cell, restores cached pre-brushed states on :meth:`BrushingSim.reset` and runs thesis Algorithm 1's inner loop
+  (:meth:`BrushingSim.stroke`) or 10 Hz velocity control (:meth:`BrushingSim.step_velocity`).
+
+Stroke (Algorithm 1, inner loop): the brush waits level beside the hair (bristle tips 15 mm in front of the
+wig) at the start height ``z_bottom + b_l·L`` (``b_l`` = normalized brush length measured up from the free ends,
+``L`` = hanging length measured after settling), the load cell is tared, the brush is pushed in to the brushing
+depth, then pulled straight down at constant speed until its lowest bristles are below the free ends; the load
+cell is read at 10 Hz and the stroke stops as soon as a reading reaches ``F_T``. The speed is 0.1 m/s by default:
+the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from . import hair as hairmod
+from .arm_control import CartesianController, plan_stroke
+from .assets import load_part
+from .rods import configure_rod_options
+from .sensors import LoadCell, LoadCellConfig
+
+__all__ = [
+    "BRUSH_TCP",
+    "PAIN_THRESHOLD",
+    "BrushingSim",
+    "SceneConfig",
+    "StrokeResult",
+    "VelocityStep",
+    "build_scene",
+]
+
+PAIN_THRESHOLD = 10.0
+"""``F_T`` [N] (thesis §3.5: pain threshold ≈ 10 N)."""
+
+BRUSH_TCP = "arm/brush/brush_tcp"
+HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
+_BRISTLE_HALF = 0.0125  # half bristle length: TCP is at mid-bristle
+_BRISTLE_ROW = 0.008 + 0.0015  # outermost bristle row (±8 mm) + bristle radius
+_MOUNT_RADIUS = (
+    0.02  # load-cell disc radius: it passes under the scalp patch and limits the stroke start height
+)
+_WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
+
+
+@dataclass(frozen=True)
+class SceneConfig:
+    """Scene and simulation settings.
+
+    Parameters
+    ----------
+    wig : str or WigConfig
+        Preset name (see :data:`hairbrush_env.hair.PRESETS`) or custom wig.
+    timestep : float
+        Physics step [s] (5 ms: see ``scripts/benchmark_sim.py``; rods are step-independent in statics).
+    control_dt : float
+        Period of the Cartesian tracking loop [s] (IK + servo set-points).
+    width, height : int
+        Webcam resolution [px].
+    camera_distance : float
+        Distance of the webcam from the hair plane [m].
+    free_end_z : float
+        World height of the rest shape's free ends (the head mount height follows from it).
+    brush_depth : float
+        TCP x offset from the wig centre during a stroke [m] (0: bristles span the middle 25 mm of the curtain).
+    stroke_speed : float
+        Default pulling speed [m/s].
+    approach_speed : float
+        Speed of free-space and insertion moves [m/s].
+    load_cell : LoadCellConfig
+        Instrument (sensor names of the nested brush).
+    hair_hair : bool
+        Hair–hair contact (off only for benchmarks).
+    max_speed : float
+        Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
+    """
+
+    wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
+    timestep: float = 5e-3
+    control_dt: float = 0.01
+    width: int = 320
+    height: int = 240
+    camera_distance: float = 0.42
+    free_end_z: float = 0.62
+    brush_depth: float = 0.0
+    stroke_speed: float = 0.1
+    approach_speed: float = 0.15
+    load_cell: LoadCellConfig = field(
+        default_factory=lambda: LoadCellConfig(
+            force_sensor="arm/brush/brush_force", torque_sensor="arm/brush/brush_torque"
+        )
+    )
+    hair_hair: bool = True
+    max_speed: float = 50.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
+        for name in (
+            "timestep",
+            "control_dt",
+            "camera_distance",
+            "stroke_speed",
+            "approach_speed",
+            "max_speed",
+        ):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"SceneConfig.{name} must be a finite number > 0, got {v!r}")
+        if self.control_dt < self.timestep:
+            raise ValueError(f"SceneConfig.control_dt must be >= timestep, got {self.control_dt!r}")
+        for name in ("width", "height"):
+            v = getattr(self, name)
+            if not (isinstance(v, int) and 16 <= v <= 4096):
+                raise ValueError(f"SceneConfig.{name} must be an int in [16, 4096], got {v!r}")
+        if not (math.isfinite(self.free_end_z) and _WORKSPACE_Z[0] < self.free_end_z < _WORKSPACE_Z[1]):
+            raise ValueError(f"SceneConfig.free_end_z must be inside {_WORKSPACE_Z}, got {self.free_end_z!r}")
+        if not (math.isfinite(self.brush_depth) and abs(self.brush_depth) <= 0.03):
+            raise ValueError(f"SceneConfig.brush_depth must be within ±0.03 m, got {self.brush_depth!r}")
+
+    @property
+    def wig_config(self) -> hairmod.WigConfig:
+        assert isinstance(self.wig, hairmod.WigConfig)
+        return self.wig
+
+
+@dataclass(frozen=True)
+class _SceneInfo:
+    layout: hairmod.WigLayout
+    root_origin: np.ndarray  # world position of the root-plane centre (scalp site)
+    head_offset: float
+
+
+def _head_offset(wig: hairmod.WigConfig, free_end_z: float, scalp_site_z: float) -> float:
+    # Variable-height mount: rest free ends at free_end_z, but never lift the scalp above its design height
+    # (the arm's top reach) — long wigs then simply hang lower.
+    return min(0.0, free_end_z + wig.hanging_length - scalp_site_z)
+
+
+def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
+    wig = config.wig_config
+    spec = mujoco.MjSpec()
+    spec.modelname = f"hairbrush_{wig.name}"
+    configure_rod_options(spec, timestep=config.timestep)
+    # Elliptic cones: the rods docstring's contact settings were validated with them (pyramidal cones make thin
+    # rods stick-slip on the bristles).
+    spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
+    # refsafe would replace the 1 ms hair contacts by ~2·dt ones, which let bristles pull wisps through themselves
+    # (hair.CONTACT_SOLREF); the discrete integrator treats the stiff rows implicitly, so they stay stable.
+    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_REFSAFE
+    spec.visual.global_.offwidth = max(640, config.width)
+    spec.visual.global_.offheight = max(480, config.height)
+    spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
+    spec.visual.headlight.diffuse = [0.5, 0.5, 0.5]
+
+    arm = load_part("arm")
+    arm.attach(load_part("brush"), site="attachment_site", prefix="brush/")
+    arm.compile()  # required before nesting (assets/brush/README.md: pending keyframes)
+    spec.attach(arm, frame=spec.worldbody.add_frame(), prefix="arm/")
+    # Tool geoms get the thin-rod contact parameters of the hair (rods.py: with MuJoCo's default 1 mm impedance
+    # width and 20 ms time constant a strand sinks into — and is pulled through — a 1.5 mm bristle). Contact
+    # parameters of a geom–flex pair are mixed, so both sides must be stiff.
+    for geom in spec.geoms:
+        if geom.name.startswith("arm/brush/tine_") or geom.name == "arm/brush/head_plate":
+            geom.solref = list(hairmod.CONTACT_SOLREF)
+            geom.solimp = list(hairmod.CONTACT_SOLIMP)
+
+    head = load_part("head")
+    scalp_local = np.asarray(head.body("scalp").pos) + np.asarray(head.site("scalp").pos)
+    dz = _head_offset(wig, config.free_end_z, float(HEAD_POS[2] + scalp_local[2]))
+    mount = HEAD_POS + np.array([0.0, 0.0, dz])
+    spec.attach(head, frame=spec.worldbody.add_frame(pos=[float(v) for v in mount]), prefix="head/")
+    root_origin = mount + scalp_local
+
+    layout = hairmod.add_wig(
+        spec,
+        wig,
+        parent_body="head/scalp",
+        root_offset=np.array(spec.site("head/scalp").pos),
+        hair_hair=config.hair_hair,
+    )
+
+    # Webcam: fixed, level, looking along +y at the hair plane x = root_origin.x, framing the workspace heights.
+    # A light, untextured backdrop behind the hair gives the curls contrast for the vision pipeline.
+    look = np.array([root_origin[0], 0.0, 0.74])
+    cam = spec.worldbody.add_camera(name="webcam", pos=list(look - [0.0, config.camera_distance, 0.0]))
+    cam.quat = [math.sqrt(0.5), math.sqrt(0.5), 0.0, 0.0]  # camera -z along world +y, camera y = world z
+    cam.fovy = 50.0
+    backdrop = spec.worldbody.add_body(name="backdrop", pos=[float(root_origin[0]), 0.3, 0.75])
+    backdrop.add_geom(
+        type=mujoco.mjtGeom.mjGEOM_BOX,
+        size=[0.5, 0.005, 0.5],
+        rgba=[0.92, 0.92, 0.9, 1.0],
+        contype=0,
+        conaffinity=0,
+        group=2,
+    )
+    key_light = spec.worldbody.add_light(name="key", pos=[float(root_origin[0]) - 0.5, -0.6, 1.6])
+    key_light.dir = [0.5, 0.6, -1.0]
+    key_light.diffuse = [0.6, 0.6, 0.6]
+    key_light.castshadow = False
+    fill = spec.worldbody.add_light(name="fill", pos=[float(root_origin[0]) + 0.3, -0.8, 0.9])
+    fill.dir = [-0.2, 1.0, -0.1]
+    fill.diffuse = [0.35, 0.35, 0.35]
+    fill.castshadow = False
+    return spec, _SceneInfo(layout=layout, root_origin=root_origin, head_offset=dz)
+
+
+def build_scene(config: SceneConfig | None = None) -> mujoco.MjSpec:
+    """Compose arm + brush + head mount + wig + webcam + lights into one (uncompiled) spec.
+
+    Names: arm ``arm/...``, brush ``arm/brush/...`` (TCP site :data:`BRUSH_TCP`), head ``head/...``, strands
+    ``hair0 ... hair{n-1}`` (rods), camera ``webcam``.
+    """
+    return _build(config if config is not None else SceneConfig())[0]
+
+
+# ---------------------------------------------------------------------------------------------- runtime
+@dataclass(frozen=True)
+class StrokeResult:
+    """Outcome of one brush stroke.
+
+    Attributes
+    ----------
+    force_trace : tuple of np.ndarray
+        ``(times, forces)`` of the 10 Hz load-cell samples during the pull (time from the start of the pull [s],
+        brushing force [N], positive = hair resisting).
+    max_force : float
+        Largest sampled brushing force (0 if no sample).
+    aborted : bool
+        A sample reached ``force_threshold`` and the stroke was stopped.
+    sim_time : float
+        Simulated duration of the whole stroke (approach, insertion, pull, retraction) [s].
+    diverged : bool
+        The simulation produced NaN, warnings or runaway speeds (state is then unusable until :meth:`reset`).
+    start_height : float
+        World z of the TCP at the start of the pull.
+    start_fraction : float
+        Requested normalized start height ``b_l``.
+    """
+
+    force_trace: tuple[np.ndarray, np.ndarray]
+    max_force: float
+    aborted: bool
+    sim_time: float
+    diverged: bool
+    start_height: float
+    start_fraction: float
+
+
+@dataclass(frozen=True)
+class VelocityStep:
+    """Outcome of :meth:`BrushingSim.step_velocity`.
+
+    Attributes
+    ----------
+    force : float
+        Latest 10 Hz brushing-force sample [N] (NaN if no sample fell into the interval).
+    max_force : float
+        Largest sample in the interval (NaN if none).
+    position : np.ndarray
+        TCP position at the end [m].
+    diverged : bool
+    """
+
+    force: float
+    max_force: float
+    position: np.ndarray
+    diverged: bool
+
+
+class BrushingSim:
+    """One compiled brushing scene with resettable pre-brushed wig states.
+
+    Parameters
+    ----------
+    config : SceneConfig, optional
+    cache : StateCache, optional
+        Shared cache of settled states (pass one instance to several sims, or one with a ``directory`` to keep
+        states across processes). Default: a fresh in-memory cache.
+    seed : int
+        Seed of the load-cell noise generator (strokes may pass their own ``rng``).
+    """
+
+    def __init__(
+        self,
+        config: SceneConfig | None = None,
+        *,
+        cache: hairmod.StateCache | None = None,
+        seed: int = 0,
+    ) -> None:
+        self.config = config if config is not None else SceneConfig()
+        self.wig = self.config.wig_config
+        self.spec, info = _build(self.config)
+        self.layout = info.layout
+        self.root_origin = info.root_origin
+        self.head_offset = info.head_offset
+        self.model = self.spec.compile()
+        self.data = mujoco.MjData(self.model)
+        self.model_hash = hairmod.StateCache.model_hash(self.model)
+        self.cache = cache if cache is not None else hairmod.StateCache()
+        self.controller = CartesianController(self.model, site=BRUSH_TCP)
+        self.load_cell = LoadCell(
+            self.model, self.config.load_cell, rng=np.random.default_rng(seed), data=self.data
+        )
+        self.entanglement_meter = hairmod.Entanglement(self.model, self.layout)
+        self._tcp_site = self.controller.site_id
+        self._n_sub = max(1, round(self.config.control_dt / self.config.timestep))
+        bodies = [
+            self.model.body(f"{name}_{k}").id
+            for name, c in zip(self.layout.names, self.layout.curves, strict=True)
+            for k in range(1, len(c))
+        ]
+        self.hair_bodies = np.array(bodies, dtype=int)
+        # Divergence watch: every dof except the rods' twist hinges, whose tiny polar inertia lets them spin at
+        # hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
+        twist = {f"{n}_twist" for n in self.layout.names}
+        self._watch_dofs = np.array(
+            [
+                self.model.jnt_dofadr[j]
+                for j in range(self.model.njnt)
+                if self.model.joint(j).name.split("_twist")[0] + "_twist" not in twist
+            ],
+            dtype=int,
+        )
+        self._renderer: mujoco.Renderer | None = None
+        self.diverged = False
+
+        # Wig geometry in the world: x range of the curtain (for the retracted brush) and the stroke depth.
+        lo, hi = self.layout.extent
+        self.hair_x_range = (float(self.root_origin[0] + lo[0]), float(self.root_origin[0] + hi[0]))
+        self.depth_x = float(self.root_origin[0] + self.config.brush_depth)
+        self.retract_x = self.hair_x_range[0] - 0.015 - _BRISTLE_HALF
+        self.top_z = float(self.root_origin[2]) - _MOUNT_RADIUS - 0.005
+        self.park = np.array([self.retract_x, 0.0, self.config.free_end_z - 0.02])
+
+        # Base state: hair at rest (rest shape = qpos0), arm holding the park pose.
+        mujoco.mj_resetData(self.model, self.data)
+        self._q = self.controller.solve(self.data, self.park)
+        self.data.qpos[self.controller.qpos_adr] = self._q
+        self.controller.apply(self.data, self._q)
+        mujoco.mj_forward(self.model, self.data)
+        self._base_state = hairmod.get_state(self.model, self.data)
+        self._target = self.park.copy()
+        self.hair_bottom = self.config.free_end_z
+        self.hair_top = float(self.root_origin[2])
+        self._warn0 = 0
+
+    # --------------------------------------------------------------------------------------- properties
+    @property
+    def curliness_true(self) -> float:
+        """Ground-truth ``R/P`` of the wig (thesis eq. 3.1)."""
+        return float(self.wig.curliness)
+
+    @property
+    def hanging_length(self) -> float:
+        """Vertical extent root → lowest free end measured at the last reset [m]."""
+        return self.hair_top - self.hair_bottom
+
+    def brush_position(self) -> np.ndarray:
+        """World position of the brush TCP (mid-bristle)."""
+        return self.data.site_xpos[self._tcp_site].copy()
+
+    def entanglement(self) -> float:
+        """``Σ |open Lk|`` over the entwined pairs (ground truth, :class:`hairbrush_env.hair.Entanglement`)."""
+        return self.entanglement_meter(self.data)
+
+    def pair_links(self) -> np.ndarray:
+        """Signed open-curve link of each entwined pair (``layout.pairs``)."""
+        return self.entanglement_meter.pair_links(self.data)
+
+    def hair_curves(self) -> list[np.ndarray]:
+        """Current centerlines of all strands (world)."""
+        return self.entanglement_meter.curves(self.data)
+
+    # --------------------------------------------------------------------------------------- reset
+    def settled_state(self, seed: int) -> np.ndarray:
+        """The pre-brushed state for ``seed`` (from the cache, or shaken now and cached)."""
+        state = self.cache.get(self.wig, seed, self.model_hash)
+        if state is None:
+            hairmod.set_state(self.model, self.data, self._base_state)
+            hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
+            state = hairmod.get_state(self.model, self.data)
+            self.cache.put(self.wig, seed, self.model_hash, state)
+        return state
+
+    def reset(self, seed: int = 0) -> None:
+        """Restore the cached pre-brushed wig for ``seed`` with the brush parked beside the hair (time = 0)."""
+        state = self.settled_state(seed)
+        hairmod.set_state(self.model, self.data, state)
+        self.data.time = 0.0
+        self._q = self.controller.arm_qpos(self.data)
+        self._target = self.park.copy()
+        self.diverged = False
+        self._warn0 = self._warnings()
+        ends = np.array([c[-1] for c in self.hair_curves()])
+        self.hair_bottom = float(ends[:, 2].min())
+        self.load_cell.reset(self.data)
+        self.load_cell.tare(self.data)
+
+    # --------------------------------------------------------------------------------------- stepping
+    def _warnings(self) -> int:
+        return int(sum(int(w.number) for w in self.data.warning))
+
+    def _check(self) -> bool:
+        d = self.data
+        if (
+            not np.all(np.isfinite(d.qpos))
+            or not np.all(np.isfinite(d.qvel))
+            or float(np.abs(d.qvel[self._watch_dofs]).max(initial=0.0)) > self.config.max_speed
+            or self._warnings() > self._warn0
+        ):
+            self.diverged = True
+        return self.diverged
+
+    def _tick(self, target: np.ndarray, vel: np.ndarray | None, samples: list | None) -> bool:
+        """One control period: track ``target``, step the physics; returns False once diverged."""
+        if self.diverged:
+            return False
+        self._q = self.controller.track(self.data, target, vel, q_init=self._q)
+        for _ in range(self._n_sub):
+            mujoco.mj_step(self.model, self.data)
+            s = self.load_cell.update(self.data)
+            if s is not None and samples is not None:
+                samples.append(s)
+        self._target = np.asarray(target, dtype=float).copy()
+        return not self._check()
+
+    def _move(self, end: np.ndarray, speed: float) -> bool:
+        path = plan_stroke(self._target, end, speed, self.config.control_dt)
+        direction = end - self._target
+        dist = float(np.linalg.norm(direction))
+        vel = direction / dist * speed if dist > 0 else np.zeros(3)
+        for p in path[1:]:
+            if not self._tick(p, vel, None):
+                return False
+        return self._tick(end, None, None)
+
+    def stroke(
+        self,
+        start_fraction: float,
+        *,
+        speed: float | None = None,
+        force_threshold: float = PAIN_THRESHOLD,
+        rng: np.random.Generator | None = None,
+    ) -> StrokeResult:
+        """One stroke of thesis Algorithm 1 (inner loop) from ``b_l = start_fraction``.
+
+        Parameters
+        ----------
+        start_fraction : float
+            Normalized start height ``b_l ∈ [0, 1]``: the pull starts ``b_l·L`` above the free ends (clamped to the
+            highest TCP height the brush head allows below the scalp).
+        speed : float, optional
+            Pull speed [m/s]; default ``config.stroke_speed``.
+        force_threshold : float
+            ``F_T`` [N]: the stroke stops at the first sample ≥ this.
+        rng : np.random.Generator, optional
+            Load-cell noise source for this stroke.
+
+        Returns
+        -------
+        StrokeResult
+        """
+        if not (isinstance(start_fraction, (int, float)) and 0.0 <= start_fraction <= 1.0):
+            raise ValueError(f"start_fraction must be in [0, 1], got {start_fraction!r}")
+        speed = self.config.stroke_speed if speed is None else float(speed)
+        if not (math.isfinite(speed) and speed > 0):
+            raise ValueError(f"speed must be > 0, got {speed!r}")
+        if rng is not None:
+            self.load_cell.rng = rng
+        t0 = float(self.data.time)
+        z_start = min(self.hair_bottom + start_fraction * self.hanging_length, self.top_z)
+        z_start = float(np.clip(z_start, _WORKSPACE_Z[0], _WORKSPACE_Z[1]))
+        z_end = max(self.hair_bottom - _BRISTLE_ROW - 0.01, _WORKSPACE_Z[0])
+        fast = self.config.approach_speed
+        empty = (np.zeros(0), np.zeros(0))
+
+        def result(trace: tuple[np.ndarray, np.ndarray], aborted: bool) -> StrokeResult:
+            forces = trace[1]
+            return StrokeResult(
+                force_trace=trace,
+                max_force=float(forces.max()) if forces.size else 0.0,
+                aborted=aborted,
+                sim_time=float(self.data.time) - t0,
+                diverged=self.diverged,
+                start_height=z_start,
+                start_fraction=float(start_fraction),
+            )
+
+        # Free-space approach: out to the retract plane, to the start height, settle, tare.
+        here = self._target
+        ok = self._move(np.array([self.retract_x, 0.0, here[2]]), fast)
+        ok = ok and self._move(np.array([self.retract_x, 0.0, z_start]), fast)
+        for _ in range(round(0.1 / self.config.control_dt)):
+            ok = ok and self._tick(self._target, None, None)
+        if not ok:
+            return result(empty, False)
+        self.load_cell.tare(self.data)
+        # Insertion to depth, then the pull.
+        if not self._move(np.array([self.depth_x, 0.0, z_start]), fast):
+            return result(empty, False)
+        self.load_cell.reset(self.data)
+        samples: list = []
+        end = np.array([self.depth_x, 0.0, z_end])
+        path = plan_stroke(self._target, end, speed, self.config.control_dt)
+        vel = np.array([0.0, 0.0, -speed])
+        aborted = False
+        t_pull = float(self.data.time)
+        for p in path[1:]:
+            n_before = len(samples)
+            if not self._tick(p, vel, samples):
+                break
+            if any(s.brushing_force() >= force_threshold for s in samples[n_before:]):
+                aborted = True
+                break
+        trace = (
+            np.array([s.time - t_pull for s in samples]),
+            np.array([s.brushing_force() for s in samples]),
+        )
+        if not self.diverged:
+            self._move(np.array([self.retract_x, 0.0, self._target[2]]), fast)
+        return result(trace, aborted)
+
+    def step_velocity(self, v_z: float, v_depth: float, dt: float = 0.1) -> VelocityStep:
+        """Move the TCP target with ``(v_depth, 0, v_z)`` [m/s] for ``dt`` seconds (velocity-level control).
+
+        ``v_depth`` is along +x (into the hair). The target is clipped to the brushing workspace
+        (x between the retract plane and 2 cm past the wig centre, z in the arm's workspace below the scalp).
+        """
+        if not (math.isfinite(v_z) and math.isfinite(v_depth) and math.isfinite(dt) and dt > 0):
+            raise ValueError(f"v_z, v_depth, dt must be finite (dt > 0), got {v_z!r}, {v_depth!r}, {dt!r}")
+        samples: list = []
+        n = max(1, round(dt / self.config.control_dt))
+        vel = np.array([v_depth, 0.0, v_z])
+        lo = np.array([self.retract_x, -0.05, _WORKSPACE_Z[0]])
+        hi = np.array([self.root_origin[0] + 0.02, 0.05, min(self.top_z, _WORKSPACE_Z[1])])
+        for _ in range(n):
+            target = np.clip(self._target + vel * self.config.control_dt, lo, hi)
+            if not self._tick(target, vel, samples):
+                break
+        forces = np.array([s.brushing_force() for s in samples])
+        return VelocityStep(
+            force=float(forces[-1]) if forces.size else math.nan,
+            max_force=float(forces.max()) if forces.size else math.nan,
+            position=self.brush_position(),
+            diverged=self.diverged,
+        )
+
+    # --------------------------------------------------------------------------------------- rendering
+    def render(self, camera: str = "webcam") -> np.ndarray:
+        """RGB image ``(height, width, 3)`` uint8 from ``camera`` (renderer created on first use)."""
+        if self._renderer is None:
+            self._renderer = mujoco.Renderer(self.model, self.config.height, self.config.width)
+        self._renderer.update_scene(self.data, camera=camera)
+        return self._renderer.render().copy()
+
+    def close(self) -> None:
+        """Free the renderer (the sim stays usable; rendering re-creates it)."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+    def __enter__(self) -> BrushingSim:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def replace_config(self, **changes: object) -> SceneConfig:
+        """Convenience: a copy of this sim's config with ``changes`` (build a new sim from it)."""
+        return dataclasses.replace(self.config, **changes)

@@ -1,0 +1,148 @@
+"""Wigs (:mod:`hairbrush_env.hair`): presets, validation, ground-truth topology, and 1 s compile-and-step runs."""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")  # before the first `import mujoco` of the session (rendering tests)
+
+import mujoco
+import numpy as np
+import pytest
+
+from hairbrush_env import hair, rods
+from hairbrush_env.assets import load_part
+
+
+def _wig_model(wig: hair.WigConfig, timestep: float = 5e-3) -> tuple[mujoco.MjModel, hair.WigLayout]:
+    spec = mujoco.MjSpec()
+    rods.configure_rod_options(spec, timestep=timestep)
+    spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
+    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_REFSAFE
+    spec.attach(load_part("head"), frame=spec.worldbody.add_frame(pos=[0.62, 0.0, 0.0]), prefix="head/")
+    layout = hair.add_wig(spec, wig, parent_body="head/scalp", root_offset=spec.site("head/scalp").pos)
+    return spec.compile(), layout
+
+
+def test_presets_span_straight_to_coily() -> None:
+    names = list(hair.PRESETS)
+    assert len(names) >= 5 and "straight" in names and "curly" in names
+    rc = [w.curliness for w in hair.PRESETS.values()]
+    assert rc[0] == 0.0 and rc[-1] >= 0.75 and rc == sorted(rc)
+    assert len({w.length for w in hair.PRESETS.values()}) == len(names)
+    assert all(w.name == n for n, w in hair.PRESETS.items())
+    assert hair.get_wig("curly") is hair.PRESETS["curly"]
+    assert hair.PRESETS[hair.DEFAULT_WIG].n_strands >= 24
+
+
+def test_unknown_preset_lists_names() -> None:
+    with pytest.raises(ValueError, match="straight") as err:
+        hair.get_wig("afro-deluxe")
+    assert "wig" in str(err.value)
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        ({"strand_radius": -1e-3}, "strand_radius"),
+        ({"curliness": 1.5}, "curliness"),
+        ({"curliness": -0.1}, "curliness"),
+        ({"curl_radius": -0.01}, "curl_radius"),
+        ({"length": 0.0}, "length"),
+        ({"n_strands": 24, "n_triples": 1}, "n_triples"),
+        ({"n_strands": 1}, "n_strands"),
+        ({"edges_per_turn": 3}, "edges_per_turn"),
+        ({"young": -5.0}, "young"),
+        ({"handedness": 0}, "handedness"),
+        ({"curliness": 0.9, "curl_radius": 0.001}, "curl_radius"),
+    ],
+)
+def test_bad_config_names_field(changes: dict, field: str) -> None:
+    with pytest.raises(ValueError, match=f"WigConfig.{field}"):
+        hair.WigConfig(**changes)
+
+
+def test_wisp_scaling() -> None:
+    w = hair.WigConfig()
+    # 0.8 mm wisp = (800/40)² = 400 hairs; equal total bending stiffness -> E_h / 400.
+    assert w.young_modulus == pytest.approx(4e9 / 400)
+    assert hair.WigConfig(young=2e8).young_modulus == 2e8
+
+
+@pytest.mark.parametrize("name", list(hair.PRESETS))
+def test_layout_ground_truth_links(name: str) -> None:
+    wig = hair.PRESETS[name]
+    lay = hair.wig_layout(wig)
+    assert len(lay.curves) == wig.n_strands and all(c.shape == (wig.n_edges + 1, 3) for c in lay.curves)
+    assert sum(len(g) for g in lay.groups) == wig.n_strands
+    assert sum(len(g) == 3 for g in lay.groups) == wig.n_triples
+    # every strand's rest length is the configured length (uniform edges on the helix)
+    for c in lay.curves:
+        assert rods.polyline_length(c) == pytest.approx(wig.length, rel=1e-9)
+    # entwined pairs link as many times as they share turns (open curves lose < 1 turn at the ends)
+    lk = np.abs(lay.pair_link)
+    assert lay.turns == pytest.approx(wig.turns, rel=0.05)
+    assert np.all(lk <= lay.turns + 1e-9) and np.all(lk >= lay.turns - 1.0)
+    assert np.all(np.sign(lay.pair_link[lk > 0.5]) == -wig.handedness)  # one chirality for all (homochiral)
+    # different groups: separated and unlinked
+    assert lay.min_cross_distance >= 2 * wig.strand_radius + wig.root_gap
+    assert lay.max_cross_link < 0.4
+    d = hair.min_distance_matrix(lay.curves)
+    assert d[np.triu_indices(wig.n_strands, 1)].min() > 2 * wig.strand_radius
+
+
+@pytest.mark.parametrize("name", list(hair.PRESETS))
+def test_preset_compiles_and_steps_one_second(name: str) -> None:
+    """Menagerie-style: every preset hangs 1 s without warnings/NaN and keeps its length within 0.5 %."""
+    wig = hair.PRESETS[name]
+    model, layout = _wig_model(wig)
+    data = mujoco.MjData(model)
+    for _ in range(round(1.0 / model.opt.timestep)):
+        mujoco.mj_step(model, data)
+    assert np.all(np.isfinite(data.qpos)) and np.all(np.isfinite(data.qvel))
+    counts = {mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(data.warning) if w.number}
+    assert not counts, counts
+    ent = hair.Entanglement(model, layout)
+    for v in ent.views:
+        assert v.length(data) == pytest.approx(wig.length, rel=5e-3)
+    curves = ent.curves(data)
+    d = hair.min_distance_matrix(curves)
+    assert d[np.triu_indices(wig.n_strands, 1)].min() > wig.strand_radius  # > half the sum of radii
+    # hanging under gravity does not change the topology: pair links stay within half a turn
+    assert np.all(np.abs(ent.pair_links(data) - layout.pair_link) < 0.5)
+
+
+def test_entanglement_at_rest_equals_ground_truth() -> None:
+    wig = hair.PRESETS["curly"].replace(n_strands=8, n_triples=0)
+    model, layout = _wig_model(wig)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    assert hair.entanglement(model, data, layout) == pytest.approx(layout.n_links, rel=1e-9)
+    assert layout.n_links == pytest.approx(np.abs(layout.pair_link).sum())
+
+
+def test_state_cache_roundtrip(tmp_path) -> None:
+    wig = hair.PRESETS["wavy"].replace(n_strands=4, n_triples=0)
+    model, _ = _wig_model(wig)
+    data = mujoco.MjData(model)
+    for _ in range(20):
+        mujoco.mj_step(model, data)
+    state = hair.get_state(model, data)
+    h = hair.StateCache.model_hash(model)
+    hair.StateCache(tmp_path).put(wig, 3, h, state)
+    fresh = hair.StateCache(tmp_path)  # another process: reads the file
+    got = fresh.get(wig, 3, h)
+    assert got is not None and np.array_equal(got, state)
+    assert fresh.get(wig, 4, h) is None and fresh.get(wig.replace(name="other"), 3, h) is None
+    # the state includes the rods' plastic reference frames
+    assert mujoco.mj_stateSize(model, hair.STATE_SPEC) > mujoco.mj_stateSize(
+        model, mujoco.mjtState.mjSTATE_PHYSICS
+    )
+
+
+def test_shake_acceleration_is_seeded() -> None:
+    wig = hair.PRESETS["curly"]
+    t = np.linspace(0, wig.shake_seconds, 50)
+    a0, a1, b = (hair.shake_acceleration(wig, s, t) for s in (0, 0, 1))
+    assert np.array_equal(a0, a1) and not np.allclose(a0, b)
+    assert np.allclose(a0[0], 0) and np.allclose(a0[-1], 0, atol=1e-9)  # smooth start/end

@@ -1,0 +1,210 @@
+"""Brushing scene (:mod:`hairbrush_env.scene`): composition, resets, strokes, rendering, no pass-through, forces.
+
+The default run uses one compiled curly scene (module fixture). Full-length strokes through every preset (the
+thesis Fig. 3.7 force table) are ``slow``.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+import mujoco
+import numpy as np
+import pytest
+
+from hairbrush_env import hair, scene
+from hairbrush_env.topology._kernels import min_segment_distance
+
+BRISTLE_RADIUS = 0.0015
+
+
+@pytest.fixture(scope="module")
+def sim() -> scene.BrushingSim:
+    s = scene.BrushingSim(scene.SceneConfig(wig="curly"))
+    s.reset(0)
+    yield s
+    s.close()
+
+
+def _bristle_segments(sim: scene.BrushingSim) -> list[np.ndarray]:
+    m, d = sim.model, sim.data
+    out = []
+    for g in range(m.ngeom):
+        if m.geom(g).name.startswith("arm/brush/tine_"):
+            ax = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g, 1]
+            out.append(np.array([d.geom_xpos[g] - ax, d.geom_xpos[g] + ax]))
+    return out
+
+
+@pytest.mark.parametrize(
+    ("changes", "field"),
+    [
+        ({"wig": "nope"}, "wig"),
+        ({"timestep": -1.0}, "timestep"),
+        ({"width": 3}, "width"),
+        ({"free_end_z": 2.0}, "free_end_z"),
+        ({"brush_depth": 0.5}, "brush_depth"),
+        ({"stroke_speed": 0.0}, "stroke_speed"),
+    ],
+)
+def test_bad_scene_config_names_field(changes: dict, field: str) -> None:
+    with pytest.raises(ValueError, match=field):
+        scene.SceneConfig(**changes)
+
+
+def test_build_scene_names_and_mount() -> None:
+    cfg = scene.SceneConfig(wig=hair.PRESETS["coily"].replace(n_strands=4, n_triples=0))
+    spec = scene.build_scene(cfg)
+    model = spec.compile()
+    for kind, name in [
+        (mujoco.mjtObj.mjOBJ_CAMERA, "webcam"),
+        (mujoco.mjtObj.mjOBJ_SITE, scene.BRUSH_TCP),
+        (mujoco.mjtObj.mjOBJ_SENSOR, "arm/brush/brush_force"),
+        (mujoco.mjtObj.mjOBJ_FLEX, "hair0"),
+    ]:
+        assert mujoco.mj_name2id(model, kind, name) >= 0, name
+    assert model.nlight >= 2
+    # variable-height mount: the rest free ends sit at free_end_z
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    z_scalp = data.site_xpos[model.site("head/scalp").id][2]
+    assert z_scalp - cfg.wig_config.hanging_length == pytest.approx(cfg.free_end_z, abs=1e-9)
+
+
+def test_reset_is_bit_exact_and_cached_reset_is_fast(sim: scene.BrushingSim) -> None:
+    sim.reset(0)
+    s0 = hair.get_state(sim.model, sim.data)
+    sim.step_velocity(-0.05, 0.0, 0.2)  # disturb
+    t0 = time.perf_counter()
+    sim.reset(0)
+    dt_reset = time.perf_counter() - t0
+    assert np.array_equal(hair.get_state(sim.model, sim.data), s0)  # incl. mjSTATE_PLASTIC
+    assert dt_reset < 0.1
+    # a cold shake from scratch (fresh cache) reproduces the cached state bit for bit
+    cold = sim.cache
+    sim.cache = hair.StateCache()
+    try:
+        sim.reset(0)
+        assert np.array_equal(hair.get_state(sim.model, sim.data), s0)
+    finally:
+        sim.cache = cold
+
+
+def test_pre_brushed_state_is_settled_and_entangled(sim: scene.BrushingSim) -> None:
+    sim.reset(0)
+    assert np.abs(sim.data.qvel).max() < 0.05  # settled
+    links = sim.pair_links()
+    # the shake keeps the entwined pairs entwined (topology survives): every pair within half a turn of truth
+    assert np.all(np.abs(links - sim.layout.pair_link) < 0.5)
+    assert sim.entanglement() == pytest.approx(sim.layout.n_links, abs=0.5 * len(links))
+    assert sim.curliness_true == hair.PRESETS["curly"].curliness
+    assert sim.hair_bottom < sim.hair_top
+
+
+def test_scene_steps_one_second_cleanly(sim: scene.BrushingSim) -> None:
+    sim.reset(0)
+    for _ in range(10):
+        res = sim.step_velocity(0.0, 0.0, 0.1)
+    assert not res.diverged and not sim.diverged
+    counts = {mujoco.mjtWarning(i).name: int(w.number) for i, w in enumerate(sim.data.warning) if w.number}
+    assert not counts, counts
+    assert abs(res.force) < 0.2  # tared at rest: only noise and servo settling remain
+    np.testing.assert_allclose(res.position, sim.park, atol=2e-3)
+
+
+def test_render_webcam(sim: scene.BrushingSim) -> None:
+    sim.reset(0)
+    img = sim.render()
+    assert img.shape == (sim.config.height, sim.config.width, 3) and img.dtype == np.uint8
+    r, g, b = (img[..., k].astype(int) for k in range(3))
+    hair_px = (r > g + 15) & (g > b) & (r < 150)  # brown, darker than skin/backdrop
+    assert hair_px.mean() > 0.01
+    sim.close()
+    assert sim._renderer is None
+
+
+def test_short_stroke_samples_at_10hz(sim: scene.BrushingSim) -> None:
+    sim.reset(0)
+    res = sim.stroke(0.3, rng=np.random.default_rng(1))
+    assert not res.diverged and not res.aborted
+    t, f = res.force_trace
+    assert t.size >= 2 and np.allclose(np.diff(t), 0.1, atol=1e-6)
+    assert np.all(np.isfinite(f)) and res.max_force == pytest.approx(f.max())
+    assert res.start_height == pytest.approx(sim.hair_bottom + 0.3 * sim.hanging_length)
+    with pytest.raises(ValueError, match="start_fraction"):
+        sim.stroke(1.5)
+
+
+def _pull_and_check(sim: scene.BrushingSim, start_fraction: float) -> tuple[float, float, float]:
+    """Velocity-controlled (10 Hz) pull; returns (min hair-hair distance, min hair-bristle distance, max |ΔLk|)."""
+    z0 = min(sim.hair_bottom + start_fraction * sim.hanging_length, sim.top_z)
+    sim._move(np.array([sim.retract_x, 0.0, z0]), 0.15)
+    sim._move(np.array([sim.depth_x, 0.0, z0]), 0.15)
+    lk_prev = sim.pair_links()
+    dhh, dhb, jump = np.inf, np.inf, 0.0
+    while sim.brush_position()[2] > sim.hair_bottom - 0.02 and not sim.diverged:
+        sim.step_velocity(-0.1, 0.0, 0.1)
+        curves = sim.hair_curves()
+        d = hair.min_distance_matrix(curves)
+        dhh = min(dhh, d[np.triu_indices(len(curves), 1)].min())
+        dhb = min(dhb, min(min_segment_distance(c, b) for c in curves for b in _bristle_segments(sim)))
+        lk = sim.pair_links()
+        jump = max(jump, float(np.abs(lk - lk_prev).max()))
+        lk_prev = lk
+    assert not sim.diverged
+    return dhh, dhb, jump
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known failure (issue #3): during a pull, trapped wisps are drawn through each other "
+    "(min hair-hair centerline distance 0.15 mm < r = 0.8 mm measured); contact tuning unfinished",
+)
+def test_no_pass_through_reduced(sim: scene.BrushingSim) -> None:
+    """Half-length pull through the curly wig: strands never pass through each other or through bristles."""
+    sim.reset(0)
+    r = sim.wig.strand_radius
+    dhh, dhb, jump = _pull_and_check(sim, 0.5)
+    assert dhh > r  # half the sum of two strand radii
+    assert dhb > 0.5 * (r + BRISTLE_RADIUS)
+    assert jump <= 0.5
+
+
+@pytest.mark.slow
+def test_no_pass_through_full_stroke_curliest() -> None:
+    s = scene.BrushingSim(scene.SceneConfig(wig=list(hair.PRESETS)[-1]))
+    s.reset(0)
+    r = s.wig.strand_radius
+    dhh, dhb, jump = _pull_and_check(s, 1.0)
+    assert dhh > r and dhb > 0.5 * (r + BRISTLE_RADIUS) and jump <= 0.5
+
+
+@pytest.mark.slow
+def test_entanglement_decreases_after_strokes() -> None:
+    s = scene.BrushingSim(scene.SceneConfig(wig="curly"))
+    s.reset(0)
+    e0 = s.entanglement()
+    for b in (0.33, 0.67, 1.0):
+        assert not s.stroke(b, force_threshold=np.inf).diverged
+    assert s.entanglement() < e0 - 1.0
+
+
+def _max_force(wig: str, fraction: float) -> float:
+    s = scene.BrushingSim(scene.SceneConfig(wig=wig))
+    s.reset(0)
+    res = s.stroke(fraction, force_threshold=np.inf, rng=np.random.default_rng(0))
+    assert not res.diverged
+    return res.max_force
+
+
+@pytest.mark.slow
+def test_force_table_thesis_scale() -> None:
+    """Thesis Fig. 3.7 / §3.5: curliest full stroke > F_T = 10 N, straight a few N; force grows with b_l."""
+    names = list(hair.PRESETS)
+    straight, curliest = _max_force(names[0], 1.0), _max_force(names[-1], 1.0)
+    assert curliest > scene.PAIN_THRESHOLD
+    assert straight < 5.0
+    assert _max_force(names[-1], 0.3) < curliest
