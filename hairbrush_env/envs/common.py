@@ -9,6 +9,10 @@ import numpy as np
 
 #: Pain threshold of the thesis (chapter 3, Algorithm 1): F_T ≈ 10 N.
 PAIN_THRESHOLD_N = 10.0
+#: Rated capacity of the simulated load cell [N]: readings saturate here, which bounds the observation spaces.
+LOAD_CELL_CAPACITY_N = 100.0
+#: Upper bound of counters/clocks in observations (episodes are far shorter).
+MAX_COUNT = 10_000.0
 
 
 @dataclass(frozen=True)
@@ -34,7 +38,14 @@ class RewardConfig:
                 raise ValueError(f"RewardConfig.{name}: must be a finite number >= 0, got {value!r}")
 
     def terms(
-        self, *, e_prev: float, e_now: float, e_initial: float, elapsed: float, forces: np.ndarray, threshold: float
+        self,
+        *,
+        e_prev: float,
+        e_now: float,
+        e_initial: float,
+        elapsed: float,
+        forces: np.ndarray,
+        threshold: float,
     ) -> dict[str, float]:
         progress = self.progress_weight * (e_prev - e_now) / max(e_initial, 1e-12)
         excess = np.clip(np.asarray(forces, dtype=float) - threshold, 0.0, None)
@@ -62,3 +73,17 @@ def check_positive(name: str, value: float) -> float:
     if not (math.isfinite(v) and v > 0.0):
         raise ValueError(f"{name}: must be a positive finite number, got {value!r}")
     return v
+
+
+def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float):
+    """The :class:`~hairbrush_env.scene.SceneConfig` of an env (wig, webcam size, load-cell noise)."""
+    import dataclasses
+
+    from ..scene import SceneConfig
+
+    if not (math.isfinite(load_cell_noise) and load_cell_noise >= 0):
+        raise ValueError(f"load_cell_noise: must be a finite number >= 0, got {load_cell_noise!r}")
+    base = SceneConfig(wig=wig, width=int(width), height=int(height))
+    return dataclasses.replace(
+        base, load_cell=dataclasses.replace(base.load_cell, noise_std=float(load_cell_noise))
+    )

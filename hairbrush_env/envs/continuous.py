@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -9,7 +10,15 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import EzPickle
 
-from .common import PAIN_THRESHOLD_N, RewardConfig, check_action, check_positive
+from .common import (
+    LOAD_CELL_CAPACITY_N,
+    MAX_COUNT,
+    PAIN_THRESHOLD_N,
+    RewardConfig,
+    check_action,
+    check_positive,
+    make_scene_config,
+)
 from .stroke import OBS_MODES
 
 CONTROL_DT = 0.1  # 10 Hz, the load cell's rate
@@ -28,9 +37,9 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
     velocity (into the hair positive) scaled by `max_depth_speed`.
 
     ## Observation Space
-    A `Dict`: `force` `Box(-inf, inf, (3,), float32)` (tared load-cell force in the world frame, N),
-    `brush_position` `Box(-inf, inf, (3,), float32)` (brush centre relative to the hair root line, m),
-    `elapsed` `Box(0, inf, (1,), float32)` (s), and `image` `Box(0, 255, (height, width, 3), uint8)` when
+    A `Dict`: `force` `Box(-100, 100, (3,), float32)` (tared load-cell force in the world frame, N, saturating
+    at the load cell's capacity), `brush_position` `Box(-1, 1, (3,), float32)` (brush TCP relative to the scalp
+    (root) site, m), `elapsed` `Box(0, 1e4, (1,), float32)` (s), and `image` `Box(0, 255, (height, width, 3), uint8)` when
     `obs_mode` includes images.
 
     ## Rewards
@@ -87,7 +96,7 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
             reward=reward,
             load_cell_noise=load_cell_noise,
         )
-        from ..scene import BrushingSim, SceneConfig
+        from ..scene import BrushingSim
 
         if obs_mode not in OBS_MODES:
             raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
@@ -109,15 +118,17 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
         self.n_wig_states = int(n_wig_states)
         self.detangled_fraction = float(detangled_fraction)
         self.reward_config = reward if reward is not None else RewardConfig()
-        self.sim = BrushingSim(SceneConfig.make(wig=wig, load_cell_noise=load_cell_noise))
+        self.sim = BrushingSim(
+            make_scene_config(wig, width=width, height=height, load_cell_noise=load_cell_noise)
+        )
 
         self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
         obs_spaces: dict[str, spaces.Space] = {}
         if "state" in obs_mode:
             obs_spaces.update(
-                force=spaces.Box(-np.inf, np.inf, shape=(3,), dtype=np.float32),
-                brush_position=spaces.Box(-np.inf, np.inf, shape=(3,), dtype=np.float32),
-                elapsed=spaces.Box(0.0, np.inf, shape=(1,), dtype=np.float32),
+                force=spaces.Box(-LOAD_CELL_CAPACITY_N, LOAD_CELL_CAPACITY_N, shape=(3,), dtype=np.float32),
+                brush_position=spaces.Box(-1.0, 1.0, shape=(3,), dtype=np.float32),
+                elapsed=spaces.Box(0.0, MAX_COUNT, shape=(1,), dtype=np.float32),
             )
         if "image" in obs_mode:
             obs_spaces["image"] = spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
@@ -130,7 +141,8 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
-        self.sim.reset(int(self.np_random.integers(self.n_wig_states)), rng=self.np_random)
+        self.sim.reset(int(self.np_random.integers(self.n_wig_states)))
+        self.sim.load_cell.rng = self.np_random  # episode noise from the env's generator
         self._e0 = self._e = self.sim.entanglement()
         self._t, self._pain, self._max_force = 0.0, 0, 0.0
         self._force = np.zeros(3)
@@ -140,14 +152,15 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
         action = check_action(action, self.action_space)
         v_z = float(action[0]) * self.max_vertical_speed
         v_depth = float(action[1]) * self.max_depth_speed
-        result = self.sim.step_velocity(v_z, v_depth, CONTROL_DT, rng=self.np_random)
+        result = self.sim.step_velocity(v_z, v_depth, CONTROL_DT)
         self._t += CONTROL_DT
         if result.diverged:
             info = self._info(True)
             info.update(reward_progress=0.0, reward_time=0.0, reward_pain=0.0)
             return self._obs(), 0.0, False, True, info
-        self._force = np.asarray(result.force, dtype=np.float64)
-        brushing = float(result.brushing_force)
+        latest = self.sim.load_cell.latest
+        self._force = latest.force_world if latest is not None else np.zeros(3)
+        brushing = float(result.force) if math.isfinite(result.force) else 0.0
         self._max_force = max(self._max_force, brushing)
         self._pain += int(brushing >= self.force_threshold)
         e_now = self.sim.entanglement()
@@ -167,7 +180,7 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
 
     def render(self):
         if self.render_mode == "rgb_array":
-            return self.sim.render(width=self.width, height=self.height)
+            return self.sim.render()
         return None
 
     def close(self):
@@ -176,11 +189,14 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
     def _obs(self) -> dict[str, np.ndarray]:
         obs: dict[str, np.ndarray] = {}
         if "state" in self.obs_mode:
-            obs["force"] = self._force.astype(np.float32)
-            obs["brush_position"] = self.sim.brush_position().astype(np.float32)
-            obs["elapsed"] = np.array([self._t], np.float32)
+            obs["force"] = np.clip(self._force, -LOAD_CELL_CAPACITY_N, LOAD_CELL_CAPACITY_N).astype(
+                np.float32
+            )
+            rel = self.sim.brush_position() - self.sim.root_origin
+            obs["brush_position"] = np.clip(rel, -1.0, 1.0).astype(np.float32)
+            obs["elapsed"] = np.array([min(self._t, MAX_COUNT)], np.float32)
         if "image" in self.obs_mode:
-            obs["image"] = self.sim.render(width=self.width, height=self.height)
+            obs["image"] = self.sim.render()
         return obs
 
     def _info(self, diverged: bool) -> dict[str, Any]:

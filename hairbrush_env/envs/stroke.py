@@ -10,7 +10,15 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import EzPickle
 
-from .common import PAIN_THRESHOLD_N, RewardConfig, check_action, check_positive
+from .common import (
+    LOAD_CELL_CAPACITY_N,
+    MAX_COUNT,
+    PAIN_THRESHOLD_N,
+    RewardConfig,
+    check_action,
+    check_positive,
+    make_scene_config,
+)
 
 OBS_MODES = ("state", "image", "state+image")
 
@@ -35,10 +43,12 @@ class HairBrushEnv(gym.Env, EzPickle):
 
     | key | space | meaning |
     |---|---|---|
-    | `force_trace` | `Box(0, inf, (trace_length,), float32)` | brushing force [N], 10 Hz, last stroke, 0-padded |
-    | `max_force` | `Box(0, inf, (1,), float32)` | maximum force of the last stroke [N] |
+    | `force_trace` | `Box(0, 100, (trace_length,), float32)` | brushing force [N], 10 Hz, last stroke, 0-padded |
+    | `max_force` | `Box(0, 100, (1,), float32)` | maximum force of the last stroke [N] |
     | `brush_length` | `Box(0, 1, (1,), float32)` | b_l of the last stroke (0 before the first) |
-    | `stroke_index` | `Box(0, inf, (1,), float32)` | strokes done in this episode |
+    | `stroke_index` | `Box(0, 1e4, (1,), float32)` | strokes done in this episode |
+
+    Forces saturate at the load cell's capacity of 100 N (negative readings, e.g. noise, are clipped to 0).
     | `image` | `Box(0, 255, (height, width, 3), uint8)` | fixed "webcam" view (with `obs_mode` containing "image") |
 
     The first observation after `reset` shows the tangled wig, so a vision policy can estimate curliness.
@@ -122,7 +132,7 @@ class HairBrushEnv(gym.Env, EzPickle):
             reward=reward,
             load_cell_noise=load_cell_noise,
         )
-        from ..scene import BrushingSim, SceneConfig  # deferred: importing the package must stay cheap
+        from ..scene import BrushingSim  # deferred: importing the package must stay cheap
 
         if obs_mode not in OBS_MODES:
             raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
@@ -147,20 +157,28 @@ class HairBrushEnv(gym.Env, EzPickle):
         self.reward_config = reward if reward is not None else RewardConfig()
         self.width, self.height = int(width), int(height)
 
-        self.sim = BrushingSim(SceneConfig.make(wig=wig, load_cell_noise=load_cell_noise))
+        self.sim = BrushingSim(
+            make_scene_config(wig, width=width, height=height, load_cell_noise=load_cell_noise)
+        )
         if trace_length is None:
-            # a full stroke: travel over the hair length plus the clearance below the free ends, at 10 Hz
-            trace_length = math.ceil(self.sim.stroke_travel(1.0) / self.stroke_speed * 10.0) + 2
+            # a full stroke at 10 Hz: the hanging length plus the clearance below the free ends, with margin for
+            # hair that hangs lower after settling
+            travel = 1.5 * self.sim.wig.hanging_length + 0.05
+            trace_length = math.ceil(travel / self.stroke_speed * 10.0) + 2
+        if int(trace_length) != trace_length or trace_length < 1:
+            raise ValueError(f"trace_length: must be a positive integer, got {trace_length!r}")
         self.trace_length = int(trace_length)
 
         self.action_space = spaces.Box(-1.0, 1.0, shape=(1,), dtype=np.float32)
         obs_spaces: dict[str, spaces.Space] = {}
         if "state" in obs_mode:
             obs_spaces.update(
-                force_trace=spaces.Box(0.0, np.inf, shape=(self.trace_length,), dtype=np.float32),
-                max_force=spaces.Box(0.0, np.inf, shape=(1,), dtype=np.float32),
+                force_trace=spaces.Box(
+                    0.0, LOAD_CELL_CAPACITY_N, shape=(self.trace_length,), dtype=np.float32
+                ),
+                max_force=spaces.Box(0.0, LOAD_CELL_CAPACITY_N, shape=(1,), dtype=np.float32),
                 brush_length=spaces.Box(0.0, 1.0, shape=(1,), dtype=np.float32),
-                stroke_index=spaces.Box(0.0, np.inf, shape=(1,), dtype=np.float32),
+                stroke_index=spaces.Box(0.0, MAX_COUNT, shape=(1,), dtype=np.float32),
             )
         if "image" in obs_mode:
             obs_spaces["image"] = spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
@@ -188,8 +206,9 @@ class HairBrushEnv(gym.Env, EzPickle):
     # --- gymnasium API -----------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         super().reset(seed=seed)
-        wig_state = int(self.np_random.integers(self.n_wig_states))
-        self.sim.reset(wig_state, rng=self.np_random)
+        # The seed picks one of a few cached pre-brushed states (shaking a wig anew on every reset would cost
+        # seconds); the load-cell noise of the episode also comes from self.np_random.
+        self.sim.reset(int(self.np_random.integers(self.n_wig_states)))
         self._e0 = self._e = self.sim.entanglement()
         self._strokes, self._pain, self._sim_time = 0, 0, 0.0
         self._prev_fmax = None
@@ -203,12 +222,16 @@ class HairBrushEnv(gym.Env, EzPickle):
     def step(self, action):
         action = check_action(action, self.action_space)
         b_l = self.action_to_brush_length(action)
-        result = self.sim.stroke(b_l, speed=self.stroke_speed, force_threshold=self.force_threshold, rng=self.np_random)
-        forces = np.asarray(result.forces, dtype=np.float64)
+        result = self.sim.stroke(
+            b_l, speed=self.stroke_speed, force_threshold=self.force_threshold, rng=self.np_random
+        )
+        forces = np.asarray(result.force_trace[1], dtype=np.float64)
         self._strokes += 1
         self._sim_time += result.sim_time
         if result.diverged:
-            self._last.update(force_trace=self._trace(forces), max_force=float(result.max_force), brush_length=b_l)
+            self._last.update(
+                force_trace=self._trace(forces), max_force=float(result.max_force), brush_length=b_l
+            )
             info = self._info(diverged=True, aborted=result.aborted)
             info.update(reward_progress=0.0, reward_time=0.0, reward_pain=0.0, force_samples=forces.tolist())
             return self._obs(), 0.0, False, True, info
@@ -237,7 +260,7 @@ class HairBrushEnv(gym.Env, EzPickle):
 
     def render(self):
         if self.render_mode == "rgb_array":
-            return self.sim.render(width=self.width, height=self.height)
+            return self.sim.render()
         return None
 
     def close(self):
@@ -247,18 +270,20 @@ class HairBrushEnv(gym.Env, EzPickle):
     def _trace(self, forces: np.ndarray) -> np.ndarray:
         out = np.zeros(self.trace_length, np.float32)
         n = min(len(forces), self.trace_length)
-        out[:n] = np.clip(forces[:n], 0.0, None)
+        out[:n] = np.clip(forces[:n], 0.0, LOAD_CELL_CAPACITY_N)  # the load cell saturates at its capacity
         return out
 
     def _obs(self) -> dict[str, np.ndarray]:
         obs: dict[str, np.ndarray] = {}
         if "state" in self.obs_mode:
             obs["force_trace"] = self._last["force_trace"]
-            obs["max_force"] = np.array([max(self._last["max_force"], 0.0)], np.float32)
+            obs["max_force"] = np.array(
+                [np.clip(self._last["max_force"], 0.0, LOAD_CELL_CAPACITY_N)], np.float32
+            )
             obs["brush_length"] = np.array([self._last["brush_length"]], np.float32)
-            obs["stroke_index"] = np.array([self._strokes], np.float32)
+            obs["stroke_index"] = np.array([min(self._strokes, MAX_COUNT)], np.float32)
         if "image" in self.obs_mode:
-            obs["image"] = self.sim.render(width=self.width, height=self.height)
+            obs["image"] = self.sim.render()
         return obs
 
     def _info(self, *, diverged: bool, aborted: bool) -> dict[str, Any]:

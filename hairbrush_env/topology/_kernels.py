@@ -19,9 +19,16 @@ costs two new difference vectors, two square roots, one atan2 and ~60 flops, wit
 from __future__ import annotations
 
 import math
+import os
 
 import numba as nb
 import numpy as np
+
+# GNU OpenMP (numba's usual default here) aborts a forked child once the parent has used its thread pool, which
+# breaks fork-based vectorized envs (AsyncVectorEnv, SubprocVecEnv). Unless the user chose a threading layer,
+# prefer TBB, then the fork-safe workqueue, over OpenMP.
+if "NUMBA_THREADING_LAYER" not in os.environ and "NUMBA_THREADING_LAYER_PRIORITY" not in os.environ:
+    nb.config.THREADING_LAYER_PRIORITY = ["tbb", "workqueue", "omp"]
 
 _INV_2PI = 1.0 / (2.0 * math.pi)
 
@@ -82,60 +89,90 @@ def _pair_term(
     return g, bad
 
 
-@nb.njit(cache=True, parallel=True, fastmath=False)
-def pair_row_sums(a, b, absolute, skip_adjacent, closed_self):  # pragma: no cover - compiled
-    """Row sums of the segment-pair Gauss matrix.
-
-    ``a`` (n+1, 3) and ``b`` (m+1, 3) are polylines whose consecutive vertices form the segments. Returns
-    ``out[i] = Σ_j G_ij`` (or ``Σ_j |G_ij|`` if ``absolute``). With ``skip_adjacent`` (a and b are the same
-    curve) pairs sharing a vertex — j ∈ {i−1, i, i+1}, and the wrap-around pair if ``closed_self`` — are skipped;
-    their exact contribution is zero anyway (coplanar), but skipping avoids 0/0 at the shared vertex.
-    Also returns the number of degenerate (touching/intersecting) pairs per row; they contribute 0.
-    """
+@nb.njit(cache=True, fastmath=False, inline="always")
+def _row_sum(a, b, i, absolute, skip_adjacent, closed_self):  # pragma: no cover - compiled
+    """Σ_j G_ij (or Σ_j |G_ij|) for segment ``i`` of ``a`` against all segments of ``b``, and its degenerate count."""
     n = a.shape[0] - 1
     m = b.shape[0] - 1
+    a0x, a0y, a0z = a[i, 0], a[i, 1], a[i, 2]
+    a1x, a1y, a1z = a[i + 1, 0], a[i + 1, 1], a[i + 1, 2]
+    # corner vectors for vertex j = 0
+    px = b[0, 0] - a0x
+    py = b[0, 1] - a0y
+    pz = b[0, 2] - a0z
+    sx = b[0, 0] - a1x
+    sy = b[0, 1] - a1y
+    sz = b[0, 2] - a1z
+    pn = math.sqrt(px * px + py * py + pz * pz)
+    sn = math.sqrt(sx * sx + sy * sy + sz * sz)
+    acc = 0.0
+    nbad = 0
+    for j in range(m):
+        qx = b[j + 1, 0] - a0x
+        qy = b[j + 1, 1] - a0y
+        qz = b[j + 1, 2] - a0z
+        rx = b[j + 1, 0] - a1x
+        ry = b[j + 1, 1] - a1y
+        rz = b[j + 1, 2] - a1z
+        qn = math.sqrt(qx * qx + qy * qy + qz * qz)
+        rn = math.sqrt(rx * rx + ry * ry + rz * rz)
+        use = True
+        if skip_adjacent:
+            d = i - j
+            if d >= -1 and d <= 1:
+                use = False
+            elif closed_self and (d == n - 1 or d == 1 - n):
+                use = False
+        if use:
+            g, bad = _pair_term(px, py, pz, pn, qx, qy, qz, qn, rx, ry, rz, rn, sx, sy, sz, sn)
+            if bad:
+                nbad += 1
+            else:
+                acc += abs(g) if absolute else g
+        # vertex j+1 becomes vertex j of the next segment
+        px, py, pz, pn = qx, qy, qz, qn
+        sx, sy, sz, sn = rx, ry, rz, rn
+    return acc, nbad
+
+
+@nb.njit(cache=True, parallel=True, fastmath=False)
+def _pair_row_sums_parallel(a, b, absolute, skip_adjacent, closed_self):  # pragma: no cover - compiled
+    n = a.shape[0] - 1
     out = np.zeros(n)
     nbad = np.zeros(n, dtype=np.int64)
     for i in nb.prange(n):
-        a0x, a0y, a0z = a[i, 0], a[i, 1], a[i, 2]
-        a1x, a1y, a1z = a[i + 1, 0], a[i + 1, 1], a[i + 1, 2]
-        # corner vectors for vertex j = 0
-        px = b[0, 0] - a0x
-        py = b[0, 1] - a0y
-        pz = b[0, 2] - a0z
-        sx = b[0, 0] - a1x
-        sy = b[0, 1] - a1y
-        sz = b[0, 2] - a1z
-        pn = math.sqrt(px * px + py * py + pz * pz)
-        sn = math.sqrt(sx * sx + sy * sy + sz * sz)
-        acc = 0.0
-        for j in range(m):
-            qx = b[j + 1, 0] - a0x
-            qy = b[j + 1, 1] - a0y
-            qz = b[j + 1, 2] - a0z
-            rx = b[j + 1, 0] - a1x
-            ry = b[j + 1, 1] - a1y
-            rz = b[j + 1, 2] - a1z
-            qn = math.sqrt(qx * qx + qy * qy + qz * qz)
-            rn = math.sqrt(rx * rx + ry * ry + rz * rz)
-            use = True
-            if skip_adjacent:
-                d = i - j
-                if d >= -1 and d <= 1:
-                    use = False
-                elif closed_self and (d == n - 1 or d == 1 - n):
-                    use = False
-            if use:
-                g, bad = _pair_term(px, py, pz, pn, qx, qy, qz, qn, rx, ry, rz, rn, sx, sy, sz, sn)
-                if bad:
-                    nbad[i] += 1
-                else:
-                    acc += abs(g) if absolute else g
-            # vertex j+1 becomes vertex j of the next segment
-            px, py, pz, pn = qx, qy, qz, qn
-            sx, sy, sz, sn = rx, ry, rz, rn
-        out[i] = acc
+        out[i], nbad[i] = _row_sum(a, b, i, absolute, skip_adjacent, closed_self)
     return out, nbad
+
+
+@nb.njit(cache=True, fastmath=False)
+def _pair_row_sums_serial(a, b, absolute, skip_adjacent, closed_self):  # pragma: no cover - compiled
+    n = a.shape[0] - 1
+    out = np.zeros(n)
+    nbad = np.zeros(n, dtype=np.int64)
+    for i in range(n):
+        out[i], nbad[i] = _row_sum(a, b, i, absolute, skip_adjacent, closed_self)
+    return out, nbad
+
+
+#: Below this many segment pairs the serial kernel is used: starting worker threads costs more than it saves,
+#: and processes that only do small problems (e.g. an env computing its wig's entanglement) never start a
+#: thread pool, so they can fork safely (vectorized RL envs).
+PARALLEL_MIN_PAIRS = 200_000
+
+
+def pair_row_sums(a, b, absolute, skip_adjacent, closed_self):
+    """Row sums of the segment-pair Gauss matrix.
+
+    ``a`` (n+1, 3) and ``b`` (m+1, 3) are polylines whose consecutive vertices form the segments. Returns
+    ``out[i] = Σ_j G_ij`` (or ``Σ_j |G_ij|`` if ``absolute``) and the number of degenerate (touching or
+    intersecting) pairs per row, which contribute 0. With ``skip_adjacent`` (a and b are the same curve) pairs
+    sharing a vertex — j ∈ {i−1, i, i+1}, and the wrap-around pair if ``closed_self`` — are skipped; their exact
+    contribution is zero anyway (coplanar), but skipping avoids 0/0 at the shared vertex.
+    """
+    pairs = (a.shape[0] - 1) * (b.shape[0] - 1)
+    kernel = _pair_row_sums_parallel if pairs >= PARALLEL_MIN_PAIRS else _pair_row_sums_serial
+    return kernel(a, b, absolute, skip_adjacent, closed_self)
 
 
 @nb.njit(cache=True, parallel=True, fastmath=False)

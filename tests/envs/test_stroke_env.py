@@ -1,0 +1,159 @@
+"""HairBrush-v0: API conformance, determinism, robustness (issue #4 reliability list)."""
+
+from __future__ import annotations
+
+import pickle
+import tracemalloc
+import warnings
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import hairbrush_env  # noqa: F401  (registers the envs)
+from hairbrush_env.envs.stroke import HairBrushEnv
+
+
+@pytest.fixture(scope="module")
+def env(small_wig):
+    e = gym.make("HairBrush-v0", wig=small_wig, obs_mode="state+image", render_mode="rgb_array")
+    yield e
+    e.close()
+
+
+def test_registered_with_time_limit(small_wig):
+    spec = gym.spec("HairBrush-v0")
+    assert spec.entry_point == "hairbrush_env.envs.stroke:HairBrushEnv"
+    assert spec.max_episode_steps == 30
+
+
+def test_gymnasium_check_env(env):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        check_env(env.unwrapped, skip_render_check=False)
+    ours = [w for w in caught if "hairbrush" in str(w.filename) or "gymnasium" in str(w.filename)]
+    assert not ours, [str(w.message) for w in ours]
+
+
+def test_sb3_check_env(small_wig):
+    sb3_checker = pytest.importorskip("stable_baselines3.common.env_checker")
+    e = HairBrushEnv(wig=small_wig, obs_mode="state")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        sb3_checker.check_env(e, warn=True)
+    e.close()
+    assert not [w for w in caught if issubclass(w.category, UserWarning)], [str(w.message) for w in caught]
+
+
+def test_first_observation_shows_the_wig(env):
+    obs, info = env.reset(seed=3)
+    img = obs["image"]
+    assert img.dtype == np.uint8 and img.shape == (120, 160, 3)
+    assert img.std() > 5  # not a blank frame: hair in front of the backdrop
+    assert obs["stroke_index"][0] == 0 and obs["max_force"][0] == 0
+    assert info["entanglement"] == info["entanglement_initial"] > 0
+    np.testing.assert_array_equal(env.render(), img)
+
+
+def test_same_seed_same_rollout_and_reward_is_sum_of_terms(env):
+    def rollout():
+        obs, _ = env.reset(seed=7)
+        out = [obs]
+        for a in (-0.2, 1.0):
+            obs, reward, _term, _trunc, info = env.step(np.array([a], np.float32))
+            assert reward == pytest.approx(
+                info["reward_progress"] + info["reward_time"] + info["reward_pain"]
+            )
+            assert len(info["force_samples"]) >= 1 and info["brush_length"] > 0
+            out += [obs, reward, info["entanglement"]]
+        return out
+
+    first, second = rollout(), rollout()
+    for x, y in zip(first, second, strict=True):
+        if isinstance(x, dict):
+            for k in x:
+                np.testing.assert_array_equal(x[k], y[k])
+        else:
+            assert x == y
+
+
+def test_actions_validated(env):
+    env.reset(seed=0)
+    for bad in (np.array([np.nan], np.float32), np.array([np.inf], np.float32)):
+        with pytest.raises(ValueError, match="action"):
+            env.step(bad)
+    with pytest.raises(ValueError, match="action: expected shape"):
+        env.step(np.zeros(3, np.float32))
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"wig": "afro-ish"}, "wig"),
+        ({"obs_mode": "pixels"}, "obs_mode"),
+        ({"force_threshold": -1.0}, "force_threshold"),
+        ({"min_brush_length": 1.5}, "min_brush_length"),
+        ({"n_wig_states": 0}, "n_wig_states"),
+        ({"width": 7}, "width"),
+    ],
+)
+def test_bad_config_raises(kwargs, field):
+    with pytest.raises(ValueError, match=field):
+        gym.make("HairBrush-v0", **kwargs)
+
+
+def test_divergence_truncates_without_raising(env):
+    env.reset(seed=0)
+    sim = env.unwrapped.sim
+    sim.data.qvel[:] = 1e12  # inject a blow-up
+    obs, reward, terminated, truncated, info = env.step(np.array([0.0], np.float32))
+    assert truncated and not terminated and info["diverged"]
+    assert reward == 0.0 and env.observation_space.contains(obs)
+    obs, info = env.reset(seed=0)  # a reset recovers
+    assert not info["diverged"] and np.all(np.isfinite(obs["force_trace"]))
+
+
+def test_pickle_round_trip(small_wig):
+    e = gym.make("HairBrush-v0", wig=small_wig, obs_mode="state")
+    clone = pickle.loads(pickle.dumps(e))
+    a, _ = e.reset(seed=11)
+    b, _ = clone.reset(seed=11)
+    for k in a:
+        np.testing.assert_array_equal(a[k], b[k])
+    e.close()
+    clone.close()
+
+
+def test_async_vector_env_two_workers(small_wig):
+    venv = gym.vector.AsyncVectorEnv(
+        [lambda: gym.make("HairBrush-v0", wig=small_wig, obs_mode="state") for _ in range(2)],
+        shared_memory=False,
+    )
+    obs, _ = venv.reset(seed=[1, 2])
+    assert obs["force_trace"].shape[0] == 2
+    obs, rewards, _term, _trunc, _infos = venv.step(np.array([[-0.8], [-0.8]], np.float32))
+    assert rewards.shape == (2,) and np.all(np.isfinite(rewards))
+    venv.close()
+
+
+def test_resets_do_not_leak_memory(small_wig):
+    e = gym.make("HairBrush-v0", wig=small_wig, obs_mode="state")
+    for seed in range(20):  # warm up: every cached state, allocator pools
+        e.reset(seed=seed)
+    tracemalloc.start()
+    before = tracemalloc.take_snapshot()
+    for seed in range(200):
+        e.reset(seed=seed)
+    after = tracemalloc.take_snapshot()
+    tracemalloc.stop()
+    growth = sum(s.size_diff for s in after.compare_to(before, "filename"))
+    e.close()
+    assert growth < 256 * 1024, f"{growth} bytes retained over 200 resets"
+
+
+def test_brush_length_action_mapping(env):
+    base = env.unwrapped
+    for b in (base.min_brush_length, 0.5, 1.0):
+        assert base.action_to_brush_length(base.brush_length_to_action(b)) == pytest.approx(b)
+    assert base.brush_length_to_action(1.0)[0] == pytest.approx(1.0)

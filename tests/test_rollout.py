@@ -1,0 +1,56 @@
+"""`hairbrush rollout` end to end and the rollout runner."""
+
+from __future__ import annotations
+
+import json
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+import gymnasium as gym
+import pytest
+
+import hairbrush_env  # noqa: F401
+from hairbrush_env.cli import main
+from hairbrush_env.hair import get_wig
+from hairbrush_env.policies import available_policies, make_policy
+from hairbrush_env.rollout import run_episode
+
+
+def test_policies_registered_by_entry_point():
+    assert {"full", "naive", "random", "sigmoid"} <= set(available_policies())
+    with pytest.raises(ValueError, match="unknown policy 'nope'"):
+        make_policy("nope", None)
+
+
+def test_run_episode_full_policy_finishes_by_eq_3_4():
+    wig = get_wig("straight").replace(name="test_tiny", n_strands=4, n_triples=0, length=0.12)
+    env = gym.make("HairBrush-v0", wig=wig)
+    log = run_episode(env, make_policy("full", env), episode=0, seed=0, policy_name="full")
+    env.close()
+    # full strokes on a straight wig: forces stay far below F_T and settle, so the finish rule ends the episode
+    assert log.terminated and not log.truncated and not log.diverged
+    assert 2 <= len(log.steps) <= 30
+    assert all(s.brush_length == pytest.approx(1.0) for s in log.steps)
+    assert log.final_entanglement < log.entanglement_initial
+    assert log.sim_time > 0 and log.pain_violations == 0
+
+
+def test_rollout_cli_writes_everything(tmp_path):
+    out = {k: tmp_path / f"out.{k}" for k in ("rrd", "mp4", "json", "png")}
+    code = main(
+        [
+            "rollout", "--wig", "straight", "--policy", "full", "--episodes", "1", "--seed", "3", "--quiet",
+            "--rerun", str(out["rrd"]), "--video", str(out["mp4"]), "--json", str(out["json"]),
+            "--plot", str(out["png"]),
+        ]
+    )  # fmt: skip
+    assert code == 0
+    data = json.loads(out["json"].read_text())
+    (ep,) = data["episodes"]
+    assert ep["policy"] == "full" and ep["wig"] == "straight" and ep["strokes"] >= 1
+    assert len(ep["steps"][0]["forces"]) >= 10  # a full stroke sampled at 10 Hz
+    for path in out.values():
+        assert path.stat().st_size > 1000, path
+    with pytest.raises(SystemExit, match="unknown policy"):
+        main(["rollout", "--policy", "nope", "--quiet"])
