@@ -1,0 +1,1098 @@
+"""Random packings of rigid rods ("bird's nest", thesis chapter 4): generation, structure and mechanics.
+
+Model (MuJoCo, SI units)
+------------------------
+Rods are rigid steel capsules (free bodies) of total length ``L`` and diameter ``d`` (cylinder part ``L − d``), so
+the aspect ratio is α = L/d as in the thesis. The container is a ring of thin boxes plus a floor box, all on one
+mocap body so it can be shaken and tilted (§4.5.1 "jostled by a motor"). Contacts: Coulomb friction μ (steel,
+default 0.4), critically damped soft contacts whose time constant is ``2·dt``.
+
+Why the time step scales with √(d/g): MuJoCo contacts are soft, and a rod resting on another sinks by ≈ 0.05 g τ²
+(τ = contact time constant). With the default τ = 20 ms that is ~0.2 mm — comparable to a 0.5 mm rod, so thin rods
+would pass through each other. We use dt = 0.1 √(d/g) and τ = 2 dt, which keeps steady penetrations at ~1 % of d
+and the number of steps per rod length fallen independent of the rod size (dynamic similarity: only α and the
+container/rod ratio matter).
+
+Other model choices (each changes dynamics only, not the statics of the final pile):
+
+* the axial moment of inertia is raised to 5 % of the transverse one: a thin rod's true axial inertia (m d²/8) makes
+  the spin DOF stiff enough to blow up the integrator at any practical step;
+* while rods are deposited and jostled they feel linear drag with terminal speed 0.25 d per step (plus a weak
+  angular drag), so no rod tunnels through another; drag is switched off for the mechanical tests;
+* rods are added in batches at non-overlapping random positions and isotropic orientations just above the current
+  pile, and the model is recompiled per batch (only deposited rods are simulated).
+
+Measurements
+------------
+* :func:`packing_fraction` — φ_f in a bulk slab (central 60 % of the pile height; avoids the ordered floor layer
+  and the rough top surface), thesis Fig. 4.5 (φ_f α ≈ const).
+* :func:`contact_numbers` — rod–rod contacts per rod from ``data.contact`` after settling; compare
+  :func:`philipse_contact_number` (random contact equation, Philipse 1996).
+* :func:`orientations` — polar θ ∈ [0, π/2] from the vertical and azimuth ϕ ∈ [0, π) of each rod axis (Fig. 4.7).
+* :func:`compress` — piston load–strain loops (Fig. 4.2, 4.6); :func:`tension` — glued top/bottom layers pulled
+  apart, disentanglement energy (Fig. 5.3).
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..io import atomic_path
+
+__all__ = [
+    "CompressionResult",
+    "Packing",
+    "TensionResult",
+    "compress",
+    "contact_numbers",
+    "generate_packing",
+    "load_packing",
+    "orientations",
+    "packing_fraction",
+    "philipse_contact_number",
+    "pile_height",
+    "tension",
+]
+
+STEEL_DENSITY = 7850.0  # kg/m³
+GRAVITY = 9.81  # m/s²
+
+
+# ------------------------------------------------------------------------------------------------ Packing
+
+
+@dataclass(frozen=True)
+class Packing:
+    """A pile of rods: polylines (2 vertices for rigid rods) of one diameter, optionally in a cylinder.
+
+    Attributes
+    ----------
+    points : (m, 3) ndarray
+        All vertices, rod after rod [m].
+    offsets : (n + 1,) int ndarray
+        Rod ``i`` is ``points[offsets[i]:offsets[i+1]]``.
+    diameter : float
+        Rod diameter d [m].
+    container_diameter : float
+        Inner diameter of the cylindrical container (axis = z through the origin, floor at z = 0); ``nan`` if
+        unknown (e.g. CT data).
+    meta : dict
+        Free-form provenance (seed, generator settings, strain, ...), stored as JSON.
+    """
+
+    points: np.ndarray
+    offsets: np.ndarray
+    diameter: float
+    container_diameter: float = float("nan")
+    meta: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        pts = np.ascontiguousarray(self.points, dtype=np.float64)
+        off = np.ascontiguousarray(self.offsets, dtype=np.int64)
+        if pts.ndim != 2 or pts.shape[1] != 3 or not np.all(np.isfinite(pts)):
+            raise ValueError(f"points: expected a finite (m, 3) array, got shape {pts.shape}")
+        if off.ndim != 1 or off.size < 2 or off[0] != 0 or off[-1] != len(pts) or np.any(np.diff(off) < 2):
+            raise ValueError("offsets: must run from 0 to len(points) with ≥ 2 vertices per rod")
+        if not (math.isfinite(self.diameter) and self.diameter > 0):
+            raise ValueError(f"diameter: must be > 0, got {self.diameter!r}")
+        if not (math.isnan(self.container_diameter) or self.container_diameter > 0):
+            raise ValueError(f"container_diameter: must be > 0 or nan, got {self.container_diameter!r}")
+        object.__setattr__(self, "points", pts)
+        object.__setattr__(self, "offsets", off)
+
+    @classmethod
+    def from_endpoints(cls, endpoints, diameter: float, container_diameter: float = float("nan"), meta=None):
+        """Packing of straight rods from an ``(n, 2, 3)`` array of end points."""
+        ep = np.asarray(endpoints, dtype=np.float64)
+        if ep.ndim != 3 or ep.shape[1:] != (2, 3):
+            raise ValueError(f"endpoints: expected shape (n, 2, 3), got {ep.shape}")
+        return cls(ep.reshape(-1, 3), np.arange(0, 2 * len(ep) + 1, 2), float(diameter), float(container_diameter),
+                   dict(meta or {}))  # fmt: skip
+
+    @property
+    def n_rods(self) -> int:
+        return len(self.offsets) - 1
+
+    @property
+    def is_straight(self) -> bool:
+        return bool(np.all(np.diff(self.offsets) == 2))
+
+    @property
+    def endpoints(self) -> np.ndarray:
+        """``(n, 2, 3)`` first and last vertex of each rod."""
+        return np.stack([self.points[self.offsets[:-1]], self.points[self.offsets[1:] - 1]], axis=1)
+
+    @property
+    def lengths(self) -> np.ndarray:
+        seg = np.linalg.norm(np.diff(self.points, axis=0), axis=1)
+        csum = np.concatenate([[0.0], np.cumsum(seg)])
+        # segments crossing from one rod to the next are excluded by differencing at rod boundaries
+        return csum[self.offsets[1:] - 1] - csum[self.offsets[:-1]]
+
+    @property
+    def aspect_ratio(self) -> float:
+        return float(np.mean(self.lengths) / self.diameter)
+
+    def segments(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """All polyline segments: start points, end points and the rod each belongs to."""
+        keep = np.ones(len(self.points) - 1, dtype=bool)
+        keep[self.offsets[1:-1] - 1] = False  # the gap between consecutive rods is not a segment
+        owner = np.repeat(np.arange(self.n_rods), np.diff(self.offsets) - 1)
+        return self.points[:-1][keep], self.points[1:][keep], owner
+
+    def save(self, path: str | Path) -> Path:
+        """Write the packing as NPZ (atomically)."""
+        with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+            np.savez_compressed(
+                fh, points=self.points, offsets=self.offsets, diameter=self.diameter,
+                container_diameter=self.container_diameter, meta=json.dumps(self.meta, default=float),
+            )  # fmt: skip
+        return Path(path)
+
+    def to_csv(self, path: str | Path) -> Path:
+        """Write ``rod,x,y,z`` rows (one per vertex; loadable by :func:`load_packing`)."""
+        rod = np.repeat(np.arange(self.n_rods), np.diff(self.offsets))
+        with atomic_path(path) as tmp, open(tmp, "w", newline="") as fh:
+            fh.write(f"# diameter={self.diameter!r} container_diameter={self.container_diameter!r}\n")
+            w = csv.writer(fh)
+            w.writerow(["rod", "x", "y", "z"])
+            for r, p in zip(rod, self.points, strict=True):
+                w.writerow([int(r), f"{p[0]:.9g}", f"{p[1]:.9g}", f"{p[2]:.9g}"])
+        return Path(path)
+
+
+def load_packing(path: str | Path, *, diameter: float | None = None, container_diameter: float | None = None):
+    """Load a :class:`Packing` from NPZ (:meth:`Packing.save`) or plain CSV.
+
+    CSV: optional ``#`` comment lines (a ``# diameter=... container_diameter=...`` line is honoured) and an
+    optional header; then either 6 columns ``x0,y0,z0,x1,y1,z1`` (one straight rod per row) or 4 columns
+    ``rod,x,y,z`` (polylines, e.g. centerlines segmented from CT; vertices of a rod consecutive). ``diameter`` /
+    ``container_diameter`` override the file's values; a CSV without a diameter line needs ``diameter``.
+    """
+    p = Path(path)
+    if not p.exists():
+        raise ValueError(f"path: packing file not found: {p}")
+    if p.suffix == ".npz":
+        with np.load(p, allow_pickle=False) as z:
+            return Packing(
+                z["points"], z["offsets"], float(diameter or z["diameter"]),
+                float(container_diameter or z["container_diameter"]), json.loads(str(z["meta"])),
+            )  # fmt: skip
+    header: dict[str, float] = {}
+    rows: list[list[float]] = []
+    with open(p, newline="") as fh:
+        for line in fh:
+            s = line.strip()
+            if not s:
+                continue
+            if s.startswith("#"):
+                for tok in s[1:].split():
+                    if "=" in tok:
+                        k, v = tok.split("=", 1)
+                        header[k.strip()] = float(v)
+                continue
+            try:
+                rows.append([float(x) for x in s.replace(",", " ").split()])
+            except ValueError:
+                if rows:
+                    raise ValueError(f"path: non-numeric row in {p}: {s!r}") from None
+                continue  # header line
+    if not rows:
+        raise ValueError(f"path: no data rows in {p}")
+    arr = np.asarray(rows)
+    d = diameter if diameter is not None else header.get("diameter")
+    if d is None:
+        raise ValueError("diameter: not in the CSV header; pass diameter=")
+    cd = (
+        container_diameter
+        if container_diameter is not None
+        else header.get("container_diameter", float("nan"))
+    )
+    meta = {"source": str(p)}
+    if arr.shape[1] == 6:
+        return Packing.from_endpoints(arr.reshape(-1, 2, 3), d, cd, meta)
+    if arr.shape[1] == 4:
+        rod = arr[:, 0].astype(np.int64)
+        starts = np.flatnonzero(np.r_[True, rod[1:] != rod[:-1]])
+        if len(np.unique(rod)) != len(starts):
+            raise ValueError("path: vertices of each rod must be consecutive in the CSV")
+        return Packing(arr[:, 1:], np.r_[starts, len(arr)], float(d), float(cd), meta)
+    raise ValueError(f"path: expected 6 (endpoint) or 4 (rod,x,y,z) columns, got {arr.shape[1]}")
+
+
+# ------------------------------------------------------------------------------------------ measurements
+
+
+def pile_height(packing: Packing, q: float = 95.0) -> float:
+    """Pile height H: the ``q``-th percentile of rod tops (highest vertex + d/2) above the floor z = 0.
+
+    A percentile rather than the maximum because a few rods stick up out of the rough top surface.
+    """
+    tops = np.maximum.reduceat(packing.points[:, 2], packing.offsets[:-1]) + packing.diameter / 2
+    return float(np.percentile(tops, q))
+
+
+def _clipped_length_in_slab(packing: Packing, lo: float, hi: float) -> float:
+    a, b, _ = packing.segments()
+    za, zb = a[:, 2], b[:, 2]
+    dz = zb - za
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_lo = np.where(dz != 0, (lo - za) / dz, np.where((za >= lo) & (za <= hi), -np.inf, np.inf))
+        t_hi = np.where(dz != 0, (hi - za) / dz, np.where((za >= lo) & (za <= hi), np.inf, -np.inf))
+    t0 = np.clip(np.minimum(t_lo, t_hi), 0, 1)
+    t1 = np.clip(np.maximum(t_lo, t_hi), 0, 1)
+    return float(np.sum(np.maximum(t1 - t0, 0) * np.linalg.norm(b - a, axis=1)))
+
+
+def packing_fraction(packing: Packing, *, slab: tuple[float, float] = (0.2, 0.8)) -> float:
+    """Bulk packing fraction φ_f: rod volume in the slab ``slab·H`` over the container volume of that slab.
+
+    Rod volume = clipped centerline length × πd²/4 (cylindrical rods, as the experiments). H from
+    :func:`pile_height`. Needs the container diameter.
+    """
+    if math.isnan(packing.container_diameter):
+        raise ValueError("container_diameter: needed for the packing fraction (unknown for this packing)")
+    lo_f, hi_f = slab
+    if not 0 <= lo_f < hi_f <= 1:
+        raise ValueError(f"slab: expected 0 ≤ lo < hi ≤ 1, got {slab!r}")
+    h = pile_height(packing)
+    lo, hi = lo_f * h, hi_f * h
+    length = _clipped_length_in_slab(packing, lo, hi)
+    r = packing.container_diameter / 2
+    return length * math.pi * packing.diameter**2 / 4 / (math.pi * r * r * (hi - lo))
+
+
+def philipse_contact_number(phi: float, alpha: float) -> float:
+    """Random contact equation (Philipse 1996): ⟨c⟩ = φ (6α² + 24α + 16) / (3α + 2); → 2φα for α ≫ 1."""
+    return phi * (6 * alpha**2 + 24 * alpha + 16) / (3 * alpha + 2)
+
+
+def orientations(packing: Packing) -> tuple[np.ndarray, np.ndarray]:
+    """Polar angle θ ∈ [0, π/2] from the vertical and azimuth ϕ ∈ [0, π) of each rod's end-to-end axis.
+
+    Rod axes are unsigned, so θ is folded onto the upper hemisphere and ϕ taken modulo π (thesis Fig. 4.7). For
+    isotropic rods cos θ is uniform on [0, 1] and ϕ uniform.
+    """
+    ep = packing.endpoints
+    u = ep[:, 1] - ep[:, 0]
+    u = u / np.linalg.norm(u, axis=1, keepdims=True)
+    theta = np.arccos(np.clip(np.abs(u[:, 2]), 0, 1))
+    phi = np.mod(np.arctan2(u[:, 1], u[:, 0]), np.pi)
+    return theta, phi
+
+
+# ------------------------------------------------------------------------------------------- simulation
+
+
+@dataclass(frozen=True)
+class SimParams:
+    """Physical and numerical parameters shared by generation and mechanical tests (see module docstring)."""
+
+    length: float
+    diameter: float
+    container_diameter: float
+    friction: float = 0.4
+    density: float = STEEL_DENSITY
+    dt_factor: float = 0.1  # dt = dt_factor · √(d/g)
+    contact_tol: float = 0.02  # rod–rod "contact" if surfaces are closer than contact_tol · d
+    wall_friction: float | None = None  # None → friction
+
+    @property
+    def dt(self) -> float:
+        return self.dt_factor * math.sqrt(self.diameter / GRAVITY)
+
+    @property
+    def mass(self) -> float:
+        return self.density * math.pi * self.diameter**2 / 4 * self.length
+
+    @property
+    def inertia(self) -> tuple[float, float, float]:
+        it = self.mass * self.length**2 / 12
+        return it, it, max(self.mass * self.diameter**2 / 8, 0.05 * it)
+
+
+class _Pile:
+    """A compiled MuJoCo model of the rods (free or glued), the container and optionally a piston."""
+
+    def __init__(
+        self,
+        sp: SimParams,
+        pos: np.ndarray,
+        quat: np.ndarray,
+        *,
+        piston_z: float | None = None,
+        glued_bottom: np.ndarray | None = None,
+        glued_top: np.ndarray | None = None,
+        walls: bool = True,
+    ):
+        import mujoco
+
+        self.mj = mujoco
+        self.sp = sp
+        n = len(pos)
+        glued_bottom = np.zeros(n, bool) if glued_bottom is None else glued_bottom
+        glued_top = np.zeros(n, bool) if glued_top is None else glued_top
+        spec = mujoco.MjSpec()
+        spec.modelname = "rod_pile"
+        opt = spec.option
+        opt.timestep = sp.dt
+        opt.gravity = [0.0, 0.0, -GRAVITY]
+        # implicitfast: the deposition drag (dof damping) is integrated implicitly, so it never limits the step.
+        opt.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+        # PGS: Newton factorizes a dense nv×nv Hessian (1000 rods → 6000 dofs) and CG with a small iteration cap
+        # let rods sink through the floor; PGS with a fixed budget is the standard granular-media choice.
+        opt.solver = mujoco.mjtSolver.mjSOL_PGS
+        opt.iterations = 30
+        opt.tolerance = 1e-7
+        tau = 2 * sp.dt
+        d = sp.diameter
+        tol = sp.contact_tol * d
+        fr = [sp.friction, 0.005, 0.0001]
+        wfr = [sp.friction if sp.wall_friction is None else sp.wall_friction, 0.005, 0.0001]
+        common = dict(
+            solref=[tau, 1.0], margin=0.0, gap=tol
+        )  # detect near-contacts (gap), push only when touching
+        r = sp.container_diameter / 2
+        wall_h = 4 * sp.length
+        t = 0.2 * sp.length
+        cont = spec.worldbody.add_body(name="container")  # static
+        nwall = 64 if walls else 0
+        for k in range(nwall):
+            a = 2 * math.pi * k / nwall
+            cont.add_geom(
+                name=f"wall{k}", type=mujoco.mjtGeom.mjGEOM_BOX,
+                size=[t / 2, r * math.tan(math.pi / nwall) * 1.05, wall_h / 2],
+                pos=[(r + t / 2) * math.cos(a), (r + t / 2) * math.sin(a), wall_h / 2],
+                quat=[math.cos(a / 2), 0, 0, math.sin(a / 2)], friction=wfr, **common,
+            )  # fmt: skip
+        cont.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_BOX, size=[1.2 * r + t, 1.2 * r + t, t / 2],
+                      pos=[0, 0, -t / 2], friction=fr, **common)  # fmt: skip
+        half = (sp.length - d) / 2
+        self.top_body = None
+        if glued_top.any():
+            self.top_body = spec.worldbody.add_body(name="top", mocap=True)
+        self.piston_z0 = piston_z
+        if piston_z is not None:
+            pist = spec.worldbody.add_body(name="piston", mocap=True, pos=[0, 0, piston_z])
+            # a box wider than the container: both are mocap (static) so they never collide with each other
+            pist.add_geom(name="piston", type=mujoco.mjtGeom.mjGEOM_BOX, size=[1.2 * r, 1.2 * r, t / 2],
+                          pos=[0, 0, t / 2], friction=fr, **common)  # fmt: skip
+        mass = sp.mass
+        inertia = sp.inertia
+        self.free = np.flatnonzero(~glued_bottom & ~glued_top)
+        self.rod_of_geom: dict[int, int] = {}
+        geom_names = []
+        for i in range(n):
+            gname = f"rod{i}"
+            q = [float(x) for x in quat[i]]
+            if glued_bottom[i]:
+                spec.worldbody.add_geom(name=gname, type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=[d / 2, half, 0],
+                                        pos=[float(x) for x in pos[i]], quat=q, friction=fr, **common)  # fmt: skip
+            elif glued_top[i]:
+                self.top_body.add_geom(name=gname, type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=[d / 2, half, 0],
+                                       pos=[float(x) for x in pos[i]], quat=q, friction=fr, **common)  # fmt: skip
+            else:
+                b = spec.worldbody.add_body(name=f"b{i}", pos=[float(x) for x in pos[i]], quat=q)
+                b.add_freejoint()
+                b.explicitinertial = True
+                # ipos/iquat must be set explicitly: left unset they do not default to the body frame
+                b.mass, b.inertia, b.ipos, b.iquat = mass, list(inertia), [0, 0, 0], [1, 0, 0, 0]
+                b.add_geom(name=gname, type=mujoco.mjtGeom.mjGEOM_CAPSULE, size=[d / 2, half, 0], friction=fr,
+                           **common)  # fmt: skip
+            geom_names.append(gname)
+        self.model = spec.compile()
+        self.data = mujoco.MjData(self.model)
+        m = self.model
+        self.geom_rod = np.full(m.ngeom, -1, dtype=np.int64)
+        for i, gname in enumerate(geom_names):
+            self.geom_rod[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, gname)] = i
+        self.floor_geom = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "floor")
+        self.piston_geom = (
+            mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "piston") if piston_z is not None else -1
+        )
+        self.body_of_rod = np.full(n, -1, dtype=np.int64)
+        for i in self.free:
+            self.body_of_rod[i] = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, f"b{i}")
+        self.n = n
+        self.pos0, self.quat0 = pos.copy(), quat.copy()
+        self.glued_bottom, self.glued_top = glued_bottom, glued_top
+        self.set_drag(True)
+        mujoco.mj_forward(m, self.data)
+
+    # -- state
+    def set_drag(self, on: bool) -> None:
+        """Deposition drag: terminal speed 0.25 d per step; angular relaxation in 50 ms."""
+        sp = self.sp
+        dof = self.model.dof_damping.reshape(-1, 6) if self.model.nv else np.zeros((0, 6))
+        vt = 0.25 * sp.diameter / sp.dt
+        dof[:, :3] = sp.mass * GRAVITY / vt if on else 0.0
+        dof[:, 3:] = sp.inertia[0] / 0.05 if on else 0.0
+
+    def poses(self) -> tuple[np.ndarray, np.ndarray]:
+        """Centers and orientation quaternions of all rods (glued rods in world coordinates)."""
+        pos, quat = self.pos0.copy(), self.quat0.copy()
+        d = self.data
+        fb = self.body_of_rod[self.free]
+        pos[self.free] = d.xpos[fb]
+        quat[self.free] = d.xquat[fb]
+        if self.top_body is not None:
+            top = np.flatnonzero(self.glued_top)
+            for i in top:
+                g = np.flatnonzero(self.geom_rod == i)[0]
+                pos[i] = d.geom_xpos[g]
+                q = np.empty(4)
+                self.mj.mju_mat2Quat(q, d.geom_xmat[g])
+                quat[i] = q
+        return pos, quat
+
+    def endpoints(self) -> np.ndarray:
+        pos, quat = self.poses()
+        return _endpoints(pos, quat, self.sp.length)
+
+    def max_speed(self) -> float:
+        if self.model.nv == 0:
+            return 0.0
+        v = self.data.qvel.reshape(-1, 6)
+        # free-joint angular velocity is in the body frame: x, y tumble the rod (tips move ω L/2), z spins it
+        spin = np.abs(v[:, 5]) * self.sp.diameter / 2
+        tumble = np.hypot(v[:, 3], v[:, 4]) * self.sp.length / 2
+        return float((np.linalg.norm(v[:, :3], axis=1) + tumble + spin).max(initial=0.0))
+
+    def step(self, nsteps: int = 1) -> None:
+        self.mj.mj_step(self.model, self.data, nsteps)
+
+    def settle(self, max_time: float, v_tol: float | None = None, min_time: float = 0.0) -> float:
+        """Step until every rod point moves slower than ``v_tol`` (default 0.05 √(g d)) or ``max_time`` passes."""
+        sp = self.sp
+        v_tol = 0.05 * math.sqrt(GRAVITY * sp.diameter) if v_tol is None else v_tol
+        chunk = 25
+        t = 0.0
+        while t < max_time:
+            self.step(chunk)
+            t += chunk * sp.dt
+            if t >= min_time and self.max_speed() < v_tol:
+                break
+        return t
+
+    # -- contacts
+    def contact_pairs(self) -> np.ndarray:
+        """Unique rod–rod pairs whose surfaces are closer than ``contact_tol · d`` (``(k, 2)`` rod ids)."""
+        d = self.data
+        nc = d.ncon
+        if nc == 0:
+            return np.zeros((0, 2), dtype=np.int64)
+        g1 = d.contact.geom1[:nc]
+        g2 = d.contact.geom2[:nc]
+        dist = d.contact.dist[:nc]
+        r1, r2 = self.geom_rod[g1], self.geom_rod[g2]
+        ok = (r1 >= 0) & (r2 >= 0) & (dist < self.sp.contact_tol * self.sp.diameter)
+        pairs = np.sort(np.stack([r1[ok], r2[ok]], axis=1), axis=1)
+        return np.unique(pairs, axis=0) if len(pairs) else pairs
+
+    def geom_forces(self, geoms: np.ndarray) -> np.ndarray:
+        """Total world-frame contact force exerted ON the geoms in the boolean mask ``geoms`` (by anything else)."""
+        mj, d = self.mj, self.data
+        nc = d.ncon
+        total = np.zeros(3)
+        if nc == 0:
+            return total
+        g1 = d.contact.geom1[:nc]
+        g2 = d.contact.geom2[:nc]
+        in1, in2 = geoms[g1], geoms[g2]
+        f6 = np.zeros(6)
+        for k in np.flatnonzero(in1 ^ in2):
+            if d.contact.efc_address[k] < 0:
+                continue
+            mj.mj_contactForce(self.model, d, int(k), f6)
+            fw = d.contact.frame[k].reshape(3, 3).T @ f6[:3]
+            # the contact force acts on geom2 along +normal (normal points geom1 → geom2), on geom1 opposite
+            total += fw if in2[k] else -fw
+        return total
+
+
+def _endpoints(pos: np.ndarray, quat: np.ndarray, length: float) -> np.ndarray:
+    w, x, y, z = quat.T
+    # third column of the rotation matrix = capsule axis
+    ax = np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], axis=1)
+    return np.stack([pos - ax * length / 2, pos + ax * length / 2], axis=1)
+
+
+def _poses_from_endpoints(ep: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    import mujoco
+
+    pos = ep.mean(axis=1)
+    u = ep[:, 1] - ep[:, 0]
+    length = float(np.linalg.norm(u, axis=1).mean())
+    u = u / np.linalg.norm(u, axis=1, keepdims=True)
+    quat = np.zeros((len(ep), 4))
+    for i, ui in enumerate(u):
+        mujoco.mju_quatZ2Vec(quat[i], ui)
+    return pos, quat, length
+
+
+def _segment_distances(a0, a1, b0s, b1s) -> np.ndarray:
+    from ..topology._kernels import _segment_distance
+
+    return np.array([_segment_distance(a0, a1, b0, b1) for b0, b1 in zip(b0s, b1s, strict=True)])
+
+
+def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float):
+    """Random isotropic rods fully inside the container, not overlapping each other or the pile's top."""
+    L, d = sp.length, sp.diameter
+    r = sp.container_diameter / 2
+    band = L * max(1.0, k / 6)
+    near = (
+        existing[np.maximum(existing[:, 0, 2], existing[:, 1, 2]) > z_top - 2 * d]
+        if len(existing)
+        else existing
+    )
+    obst0 = list(near[:, 0]) if len(near) else []
+    obst1 = list(near[:, 1]) if len(near) else []
+    out = []
+    for _ in range(k):
+        for _attempt in range(200):
+            u = rng.normal(size=3)
+            u /= np.linalg.norm(u)
+            rmax = max(r - L / 2 * math.hypot(u[0], u[1]) - 1.5 * d, 0.0)
+            rr = math.sqrt(rng.random()) * rmax
+            ph = rng.random() * 2 * math.pi
+            ext = L / 2 * abs(u[2]) + d
+            c = np.array([rr * math.cos(ph), rr * math.sin(ph), z_top + ext + 2 * d + rng.random() * band])
+            a0, a1 = c - u * L / 2, c + u * L / 2
+            if not obst0 or _segment_distances(a0, a1, np.array(obst0), np.array(obst1)).min() > 2 * d:
+                break
+        else:  # pragma: no cover - only with absurd batch sizes
+            c = c + np.array([0, 0, band])
+            a0, a1 = c - u * L / 2, c + u * L / 2
+        obst0.append(a0)
+        obst1.append(a1)
+        out.append((a0, a1))
+    return np.array(out)
+
+
+def _jostle(pile: _Pile, rng, n_shakes: int, tilt_deg: float) -> None:
+    """Shake and tilt the container, simulated in the container's frame (§4.5.1 "jostled ... inverted").
+
+    In the frame of a container that translates with acceleration a(t) and tilts slowly, the rods feel the effective
+    gravity g − a(t) rotated by the tilt; the fictitious rotational forces are negligible for slow tilts. So instead
+    of moving the walls (a teleported mocap container pushes rods through each other), we vary gravity: magnitude
+    g(1 + 1.2 sin ωt) — the pile is thrown up ~1 d each period — while its direction tilts by up to ``tilt_deg``
+    about a random horizontal axis and back. Then everything settles under normal gravity.
+    """
+    sp = pile.sp
+    opt = pile.model.opt
+    period = 12.6 * math.sqrt(sp.diameter / GRAVITY)  # free-flight time of a ~1 d hop at 0.2 g net lift
+    omega = 2 * math.pi / period
+    nsteps = int(5 * period / sp.dt)
+    for _ in range(n_shakes):
+        ph = rng.random() * 2 * math.pi
+        axis = np.array([math.cos(ph), math.sin(ph), 0.0])
+        for k in range(nsteps):
+            ang = math.radians(tilt_deg) * math.sin(math.pi * k / nsteps)
+            mag = GRAVITY * (1 + 1.2 * math.sin(omega * k * sp.dt))
+            down = np.array([0.0, 0.0, -1.0])
+            # Rodrigues rotation of "down" about the horizontal axis
+            g_dir = down * math.cos(ang) + np.cross(axis, down) * math.sin(ang)
+            opt.gravity[:] = mag * g_dir
+            pile.step()
+        opt.gravity[:] = [0.0, 0.0, -GRAVITY]
+        pile.settle(max_time=8 * math.sqrt(sp.length / GRAVITY), min_time=2 * period)
+
+
+def generate_packing(
+    n_rods: int,
+    length: float,
+    diameter: float,
+    *,
+    container_diameter: float | None = None,
+    seed: int = 0,
+    jostle: bool = True,
+    batch_size: int = 10,
+    n_shakes: int = 2,
+    tilt_deg: float = 20.0,
+    friction: float = 0.4,
+    progress: bool = True,
+) -> Packing:
+    """Drop ``n_rods`` rigid rods in small batches into a cylinder, jostle and settle (thesis §4.5.1).
+
+    Parameters
+    ----------
+    n_rods : int
+        Number of rods.
+    length, diameter : float
+        Rod length L and diameter d [m]; α = L/d.
+    container_diameter : float, optional
+        Cylinder inner diameter (default 3 L, as in the experiments).
+    seed : int
+        Random seed (positions, orientations, shaking axes).
+    jostle : bool
+        Shake and tilt the container when half of the rods are in and at the end (§4.5.1), then settle.
+    batch_size : int
+        Rods dropped together (the experiments drop "steadily and in small numbers").
+    n_shakes, tilt_deg : int, float
+        Shakes per jostle episode and the tilt of the container during a shake.
+    friction : float
+        Coulomb friction coefficient (steel on steel ≈ 0.3–0.5).
+    progress : bool
+        Show a tqdm progress bar.
+
+    Returns
+    -------
+    Packing
+        Settled rods (end points), with the contact pairs and settings in ``meta``.
+    """
+    from tqdm import tqdm
+
+    if not (isinstance(n_rods, int | np.integer) and n_rods >= 1):
+        raise ValueError(f"n_rods: must be a positive integer, got {n_rods!r}")
+    if not (math.isfinite(length) and length > 0):
+        raise ValueError(f"length: must be > 0, got {length!r}")
+    if not (math.isfinite(diameter) and 0 < diameter < length):
+        raise ValueError(f"diameter: must be in (0, length), got {diameter!r}")
+    cdia = 3 * length if container_diameter is None else float(container_diameter)
+    if not cdia > length + 2 * diameter:
+        raise ValueError(f"container_diameter: must exceed the rod length, got {cdia!r}")
+    if batch_size < 1:
+        raise ValueError(f"batch_size: must be ≥ 1, got {batch_size!r}")
+    sp = SimParams(length, diameter, cdia, friction=friction)
+    rng = np.random.default_rng(seed)
+    ep = np.zeros((0, 2, 3))
+    jostle_at = {round(n_rods * 0.5)} if jostle else set()
+    pile = None
+    t_fall = math.sqrt(2 * length / GRAVITY) * 4  # generous: drag slows the fall
+    with tqdm(
+        total=n_rods, desc=f"dropping rods (α={length / diameter:.0f})", unit="rod", disable=not progress
+    ) as bar:
+        while len(ep) < n_rods:
+            k = min(batch_size, n_rods - len(ep))
+            z_top = float(np.percentile(np.maximum(ep[:, 0, 2], ep[:, 1, 2]), 90)) if len(ep) else 0.0
+            new = _place_batch(rng, k, sp, ep, z_top)
+            ep = np.concatenate([ep, new])
+            pos, quat, _ = _poses_from_endpoints(ep)
+            pile = _Pile(sp, pos, quat)
+            pile.settle(max_time=1.5 * t_fall, min_time=0.2 * t_fall)
+            ep = pile.endpoints()
+            bar.update(k)
+            if len(ep) in jostle_at:
+                _jostle(pile, rng, n_shakes, tilt_deg)
+                ep = pile.endpoints()
+    if jostle:
+        _jostle(pile, rng, n_shakes, tilt_deg)
+    pile.set_drag(False)
+    pile.settle(max_time=2 * t_fall)
+    ep = pile.endpoints()
+    pairs = pile.contact_pairs()
+    meta = {
+        "generator": "hairbrush_env.studies.rod_pile.generate_packing",
+        "seed": int(seed), "jostle": bool(jostle), "batch_size": int(batch_size), "friction": float(friction),
+        "length": float(length), "contact_pairs": pairs.tolist(),
+        "lost_rods": int(np.sum(ep[:, :, 2].min(axis=1) < -diameter)),
+    }  # fmt: skip
+    return Packing.from_endpoints(ep, diameter, cdia, meta)
+
+
+def contact_numbers(packing: Packing, *, tol: float = 0.02, recompute: bool = False) -> np.ndarray:
+    """Number of distinct rods touching each rod (surface gap < ``tol · d``).
+
+    Uses the contact list stored by :func:`generate_packing` / :func:`compress` (MuJoCo contacts with a
+    detection gap of 0.02 d) unless ``recompute`` or ``tol`` differs; otherwise recomputes from the geometry with
+    an exact segment–segment distance between the rods' capsule axes (end points pulled in by d/2, as simulated).
+    """
+    n = packing.n_rods
+    pairs = packing.meta.get("contact_pairs")
+    if pairs is None or recompute or tol != 0.02:
+        pairs = _geometric_contacts(packing, tol)
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    return np.bincount(pairs.ravel(), minlength=n)
+
+
+def _geometric_contacts(packing: Packing, tol: float) -> np.ndarray:
+    from scipy.spatial import cKDTree
+
+    if not packing.is_straight:
+        raise ValueError("packing: contact detection from geometry needs straight rods")
+    ep = packing.endpoints
+    d = packing.diameter
+    u = ep[:, 1] - ep[:, 0]
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    ep = np.stack([ep[:, 0] + u * d / 2, ep[:, 1] - u * d / 2], axis=1)  # capsule axis: caps round the ends
+    centers = ep.mean(axis=1)
+    half = np.linalg.norm(ep[:, 1] - ep[:, 0], axis=1).max() / 2
+    cand = cKDTree(centers).query_pairs(2 * half + d * (1 + tol), output_type="ndarray")
+    from ..topology._kernels import _segment_distance
+
+    out = [
+        (i, j) for i, j in cand
+        if _segment_distance(ep[i, 0], ep[i, 1], ep[j, 0], ep[j, 1]) < d * (1 + tol)
+    ]  # fmt: skip
+    return np.asarray(out, dtype=np.int64).reshape(-1, 2)
+
+
+def bulk_rods(packing: Packing, *, slab: tuple[float, float] = (0.2, 0.8)) -> np.ndarray:
+    """Rods whose center lies in the bulk slab and at least L/2 from the container wall (boolean mask)."""
+    h = pile_height(packing)
+    c = packing.endpoints.mean(axis=1)
+    ok = (c[:, 2] >= slab[0] * h) & (c[:, 2] <= slab[1] * h)
+    if not math.isnan(packing.container_diameter):
+        L = float(np.mean(packing.lengths))
+        ok &= np.hypot(c[:, 0], c[:, 1]) <= packing.container_diameter / 2 - L / 2
+    return ok
+
+
+# ------------------------------------------------------------------------------------------- mechanics
+
+
+@dataclass(frozen=True)
+class CompressionResult:
+    """Piston test: load–strain per cycle (thesis Fig. 4.2, 4.6).
+
+    Attributes
+    ----------
+    strain, load : list of (k,) ndarray
+        Per cycle, strain ε = (H0 − z_piston)/H0 and piston load [N] (sum of contact normal forces), loading then
+        unloading.
+    loading : list of (k,) bool ndarray
+        True on the loading branch.
+    max_load : (cycles,) ndarray
+        Maximum load of each cycle [N].
+    dissipated : (cycles,) ndarray
+        Loop area ∮ F dz [J] (loading work − unloading work) per cycle; > 0 means energy was dissipated.
+    h0 : float
+        Initial pile height H0 [m] (:func:`pile_height`), the reference of the strain.
+    weight : float
+        Weight of the pile [N].
+    snapshots : dict[float, Packing]
+        Packings at the requested strains (first loading branch).
+    final : Packing
+        Pile after the last unloading.
+    """
+
+    strain: list
+    load: list
+    loading: list
+    max_load: np.ndarray
+    dissipated: np.ndarray
+    h0: float
+    weight: float
+    snapshots: dict
+    final: Packing
+
+    def save(self, path: str | Path) -> Path:
+        arrays = {}
+        for c, (s, f, lo) in enumerate(zip(self.strain, self.load, self.loading, strict=True)):
+            arrays[f"strain_{c}"], arrays[f"load_{c}"], arrays[f"loading_{c}"] = s, f, lo
+        with atomic_path(path) as tmp, open(tmp, "wb") as fh:
+            np.savez_compressed(fh, max_load=self.max_load, dissipated=self.dissipated, h0=self.h0,
+                                weight=self.weight, cycles=len(self.strain), **arrays)  # fmt: skip
+        return Path(path)
+
+
+def _check_straight(packing: Packing) -> None:
+    if not packing.is_straight:
+        raise ValueError("packing: mechanical tests need straight rigid rods (2 vertices per rod)")
+    if math.isnan(packing.container_diameter):
+        raise ValueError("packing: container_diameter unknown; mechanical tests need the container")
+
+
+def compress(
+    packing: Packing,
+    strain_max: float = 0.15,
+    cycles: int = 1,
+    rate: float | None = None,
+    *,
+    snapshot_strains: Sequence[float] = (),
+    friction: float | None = None,
+    samples_per_cycle: int = 200,
+    progress: bool = True,
+) -> CompressionResult:
+    """Compress the pile with a piston to ``strain_max`` and back, ``cycles`` times (thesis Fig. 4.2d, 4.6).
+
+    The piston (a plate wider than the container, mocap) starts just above the highest rod and moves at constant
+    speed down to z = (1 − ε_max) H0 and back, H0 = :func:`pile_height` (95th percentile of rod tops: the few rods
+    sticking out of the surface do not define the height). Strain ε = (H0 − z)/H0, so the first samples have ε < 0
+    (the piston meets the protruding rods). The load is the total contact force on the piston (vertical). Drag is
+    off, so the only dissipation is frictional sliding and the (critically damped) contacts.
+
+    Parameters
+    ----------
+    rate : float, optional
+        Strain rate [1/s]. Default: piston speed 0.1 √(g d) (0.01 d per step), slow compared with free fall
+        over a diameter, i.e. quasi-static.
+    snapshot_strains : sequence of float
+        Strains (≤ strain_max) at which to return the packing on the first loading branch.
+    """
+    from tqdm import tqdm
+
+    _check_straight(packing)
+    if not 0 < strain_max < 1:
+        raise ValueError(f"strain_max: must be in (0, 1), got {strain_max!r}")
+    if cycles < 1:
+        raise ValueError(f"cycles: must be ≥ 1, got {cycles!r}")
+    snaps_req = sorted(float(s) for s in snapshot_strains)
+    if any(not 0 <= s <= strain_max for s in snaps_req):
+        raise ValueError(f"snapshot_strains: must lie in [0, strain_max], got {snaps_req}")
+    ep = packing.endpoints
+    pos, quat, length = _poses_from_endpoints(ep)
+    d = packing.diameter
+    fr = packing.meta.get("friction", 0.4) if friction is None else friction
+    sp = SimParams(length, d, packing.container_diameter, friction=fr)
+    h0 = pile_height(packing)
+    z_start = float(ep[:, :, 2].max() + d)  # just above the highest rod: no initial overlap
+    pile = _Pile(sp, pos, quat, piston_z=z_start)
+    pile.set_drag(False)
+    pile.settle(max_time=0.5 * math.sqrt(length / GRAVITY))
+    speed = 0.1 * math.sqrt(GRAVITY * d) if rate is None else rate * h0
+    if not speed > 0:
+        raise ValueError(f"rate: must be > 0, got {rate!r}")
+    dz_step = speed * sp.dt
+    travel = z_start - (1 - strain_max) * h0
+    n_half = max(math.ceil(travel / dz_step), 2)
+    every = max(n_half // samples_per_cycle, 1)
+    piston_mask = np.zeros(pile.model.ngeom, bool)
+    piston_mask[pile.piston_geom] = True
+    data = pile.data
+    strains, loads, loadings, snaps = [], [], [], {}
+    pending = list(snaps_req)
+    with tqdm(total=cycles * 2 * n_half, desc="compressing", unit="step", disable=not progress) as bar:
+        for c in range(cycles):
+            s_list, f_list, l_list = [], [], []
+            for branch in (0, 1):
+                for k in range(n_half + 1):
+                    frac = k / n_half if branch == 0 else 1 - k / n_half
+                    z = z_start - travel * frac
+                    data.mocap_pos[0] = [0.0, 0.0, z]
+                    pile.step()
+                    eps = (h0 - z) / h0
+                    if k % every == 0 or k == n_half:
+                        s_list.append(eps)
+                        f_list.append(pile.geom_forces(piston_mask)[2])  # rods push the piston up
+                        l_list.append(branch == 0)
+                    while c == 0 and branch == 0 and pending and eps >= pending[0] - 1e-12:
+                        snaps[pending.pop(0)] = _snapshot(pile, packing, eps)
+                    if k % 200 == 0:
+                        bar.update(min(200, 2 * n_half))
+            strains.append(np.array(s_list))
+            loads.append(np.array(f_list))
+            loadings.append(np.array(l_list))
+    max_load = np.array([f.max() for f in loads])
+    dissipated = np.array(
+        [_loop_area(s, f, lo) * h0 for s, f, lo in zip(strains, loads, loadings, strict=True)]
+    )
+    pile.settle(max_time=0.5 * math.sqrt(length / GRAVITY))
+    final = _snapshot(pile, packing, 0.0)
+    return CompressionResult(strains, loads, loadings, max_load, dissipated, h0, packing.n_rods * sp.mass * GRAVITY,
+                             snaps, final)  # fmt: skip
+
+
+def _snapshot(pile: _Pile, packing: Packing, strain: float) -> Packing:
+    meta = {k: v for k, v in packing.meta.items() if k != "contact_pairs"}
+    meta["strain"] = float(strain)
+    meta["contact_pairs"] = pile.contact_pairs().tolist()
+    return Packing.from_endpoints(pile.endpoints(), packing.diameter, packing.container_diameter, meta)
+
+
+def _loop_area(strain: np.ndarray, load: np.ndarray, loading: np.ndarray) -> float:
+    """∫ F dε on loading minus ∫ F dε on unloading (trapezoid rule)."""
+    up = np.trapezoid(load[loading], strain[loading])
+    s_dn, f_dn = strain[~loading], load[~loading]
+    down = -np.trapezoid(f_dn, s_dn)  # unloading runs from ε_max back to 0
+    return float(up - down)
+
+
+@dataclass(frozen=True)
+class TensionResult:
+    """Glued top/bottom layers pulled apart (thesis Fig. 5.3).
+
+    Attributes
+    ----------
+    displacement : (k,) ndarray
+        Lift of the top plate [m]; ``strain`` = displacement / H.
+    load : (k,) ndarray
+        Force holding the top plate [N] (weight of the glued top layer + what hangs on it + friction).
+    lifted_weight : (k,) ndarray
+        Weight of the lifted part [N]: glued top rods plus free rods that rose by more than half the plate lift.
+    energy : float
+        Disentanglement energy ∫ (load − lifted_weight) dz [J] (the blue area of Fig. 5.3b).
+    separation : float
+        Plate lift at which load − lifted weight last exceeded 5 % of its peak [m] (Fig. 5.3c), nan if never.
+    """
+
+    displacement: np.ndarray
+    strain: np.ndarray
+    load: np.ndarray
+    lifted_weight: np.ndarray
+    energy: float
+    separation: float
+    n_glued_top: int
+    n_glued_bottom: int
+
+
+def tension(
+    packing: Packing,
+    *,
+    glue_depth: float = 0.15,
+    strain_max: float = 1.0,
+    rate: float | None = None,
+    wall_friction: float = 0.0,
+    samples: int = 300,
+    progress: bool = True,
+) -> TensionResult:
+    """Glue the top and bottom layers and pull them apart (thesis §4.5.2 tension test, Fig. 5.3).
+
+    Rods reaching into the bottom ``glue_depth·H`` are fixed to the floor (epoxy in a petri dish); rods reaching
+    into the top ``glue_depth·H`` (and not glued at the bottom) are fixed to a plate that rises at constant speed.
+    The container walls stay to hold the loose middle in place but are frictionless by default (the experiment
+    pulls a free-standing pile; walls with friction would carry load).
+    """
+    from tqdm import tqdm
+
+    _check_straight(packing)
+    if not 0 < glue_depth < 0.5:
+        raise ValueError(f"glue_depth: must be in (0, 0.5), got {glue_depth!r}")
+    if not strain_max > 0:
+        raise ValueError(f"strain_max: must be > 0, got {strain_max!r}")
+    ep = packing.endpoints
+    d = packing.diameter
+    h = float(ep[:, :, 2].max() + d / 2)
+    zmin, zmax = ep[:, :, 2].min(axis=1), ep[:, :, 2].max(axis=1)
+    bottom = zmin < glue_depth * h
+    top = (zmax > (1 - glue_depth) * h) & ~bottom
+    if not top.any() or not bottom.any():
+        raise ValueError("glue_depth: no rods in the top or bottom glue layer")
+    pos, quat, length = _poses_from_endpoints(ep)
+    fr = packing.meta.get("friction", 0.4)
+    sp = SimParams(length, d, packing.container_diameter, friction=fr, wall_friction=wall_friction)
+    pile = _Pile(sp, pos, quat, glued_bottom=bottom, glued_top=top)
+    pile.set_drag(False)
+    pile.settle(max_time=0.5 * math.sqrt(length / GRAVITY))
+    top_mask = np.zeros(pile.model.ngeom, bool)
+    top_mask[np.isin(pile.geom_rod, np.flatnonzero(top))] = True
+    mrod = sp.mass * GRAVITY
+    w_top = top.sum() * mrod
+    speed = 0.1 * math.sqrt(GRAVITY * d) if rate is None else rate * h
+    travel = strain_max * h
+    nsteps = max(math.ceil(travel / (speed * sp.dt)), 2)
+    every = max(nsteps // samples, 1)
+    data = pile.data
+    mocap_top = pile.model.body_mocapid[pile.mj.mj_name2id(pile.model, pile.mj.mjtObj.mjOBJ_BODY, "top")]
+    z0_free = data.xpos[pile.body_of_rod[pile.free], 2].copy()
+    disp, load, lifted = [], [], []
+    with tqdm(total=nsteps, desc="pulling apart", unit="step", disable=not progress) as bar:
+        for k in range(nsteps + 1):
+            u = travel * k / nsteps
+            data.mocap_pos[mocap_top] = [0.0, 0.0, u]
+            pile.step()
+            if k % every == 0 or k == nsteps:
+                rise = data.xpos[pile.body_of_rod[pile.free], 2] - z0_free
+                n_lift = int(np.sum(rise > 0.5 * u)) if u > 2 * d else 0
+                disp.append(u)
+                load.append(w_top - pile.geom_forces(top_mask)[2])
+                lifted.append(w_top + n_lift * mrod)
+            if k % 200 == 0:
+                bar.update(min(200, nsteps))
+    disp_a, load_a, lift_a = np.array(disp), np.array(load), np.array(lifted)
+    excess = load_a - lift_a
+    energy = float(np.trapezoid(excess, disp_a))
+    peak = excess.max()
+    above = np.flatnonzero(excess > 0.05 * peak) if peak > 0 else np.array([], dtype=int)
+    sep = float(disp_a[above[-1]]) if len(above) and above[-1] < len(disp_a) - 1 else float("nan")
+    return TensionResult(disp_a, disp_a / h, load_a, lift_a, energy, sep, int(top.sum()), int(bottom.sum()))
+
+
+# ------------------------------------------------------------------------------------------------ figures
+
+
+def plot_compression(result: CompressionResult, path: str | Path) -> Path:
+    """Load–strain loops of every cycle (Fig. 4.2e / 4.6) and the maximum load per cycle (Fig. 4.2d inset)."""
+    from ..viz import PALETTE, new_figure, save_figure
+
+    fig, axes = new_figure(2, 1, width=4.6, height=3.6)
+    ax, ax2 = axes[0]
+    for c, (s, f) in enumerate(zip(result.strain, result.load, strict=True)):
+        ax.plot(s, f, color=PALETTE[c % len(PALETTE)], lw=1.2, label=f"cycle {c + 1}")
+    ax.axhline(result.weight, color="0.5", ls=":", lw=1, label="pile weight")
+    ax.set(xlabel="strain ε", ylabel="piston load [N]", title="compression cycles")
+    ax.legend(fontsize=8)
+    cyc = np.arange(1, len(result.max_load) + 1)
+    ax2.plot(cyc, result.max_load, "o-", color=PALETTE[0])
+    ax2.set(xlabel="cycle", ylabel="maximum load [N]", title="softening over cycles")
+    save_figure(fig, path)
+    return Path(path)
+
+
+def plot_tension(result: TensionResult, path: str | Path) -> Path:
+    """Load and weight of the lifted part vs plate lift; the area between them is the disentanglement energy."""
+    from ..viz import PALETTE, new_figure, save_figure
+
+    fig, axes = new_figure(1, 1, width=5.0, height=3.8)
+    ax = axes[0, 0]
+    x = result.displacement * 1e3
+    ax.plot(x, result.load, color=PALETTE[0], label="load")
+    ax.plot(x, result.lifted_weight, color=PALETTE[1], label="weight of lifted part")
+    ax.fill_between(x, result.lifted_weight, result.load, where=result.load > result.lifted_weight,
+                    color=PALETTE[5], alpha=0.4, label=f"E = {result.energy * 1e3:.3g} mJ")  # fmt: skip
+    ax.set(xlabel="plate lift [mm]", ylabel="force [N]", title="pulling glued layers apart (Fig. 5.3b)")
+    ax.legend(fontsize=8)
+    save_figure(fig, path)
+    return Path(path)
+
+
+def plot_structure(packings: dict, path: str | Path) -> Path:
+    """Orientation distributions θ, ϕ (Fig. 4.7c–d) and contact-number distributions (Fig. 4.8) of packings."""
+    from ..viz import PALETTE, new_figure, save_figure
+
+    fig, axes = new_figure(3, 1, width=4.2, height=3.4)
+    a_th, a_ph, a_c = axes[0]
+    for k, (label, p) in enumerate(packings.items()):
+        col = PALETTE[k % len(PALETTE)]
+        th, ph = orientations(p)
+        a_th.hist(
+            np.degrees(th), bins=18, range=(0, 90), density=True, histtype="step", color=col, label=label
+        )
+        a_ph.hist(
+            np.degrees(ph), bins=18, range=(0, 180), density=True, histtype="step", color=col, label=label
+        )
+        c = contact_numbers(p)
+        a_c.hist(c, bins=np.arange(c.max() + 2) - 0.5, density=True, histtype="step", color=col,
+                 label=f"{label}: ⟨c⟩={c.mean():.2f}")  # fmt: skip
+    x = np.linspace(0, 90, 50)
+    a_th.plot(x, np.sin(np.radians(x)) * np.pi / 180, "k:", lw=1, label="isotropic")
+    a_th.set(xlabel="polar angle θ [deg]", ylabel="density")
+    a_ph.set(xlabel="azimuth ϕ [deg]", ylabel="density")
+    a_c.set(xlabel="contacts per rod c", ylabel="fraction")
+    for a in (a_th, a_ph, a_c):
+        a.legend(fontsize=7)
+    save_figure(fig, path)
+    return Path(path)
+
+
+def plot_phi_alpha(alpha, phi, path: str | Path, *, contacts=None) -> Path:
+    """φ_f vs α with φα = const curves (Fig. 4.5), and optionally ⟨c⟩ vs Philipse's equation."""
+    from ..viz import PALETTE, new_figure, save_figure
+
+    alpha, phi = np.asarray(alpha, float), np.asarray(phi, float)
+    ncols = 2 if contacts is not None else 1
+    fig, axes = new_figure(ncols, 1, width=4.6, height=3.6)
+    ax = axes[0, 0]
+    ax.plot(alpha, phi, "o", color=PALETTE[0], label="simulated piles")
+    x = np.linspace(0.8 * alpha.min(), 1.2 * alpha.max(), 100)
+    for k, c in enumerate((3.0, 4.0, 6.0)):
+        ax.plot(x, c / x, ls=":", color=PALETTE[k + 1], label=f"φα = {c:g}")
+    ax.set(xlabel="aspect ratio α", ylabel="packing fraction φ_f", title="Fig. 4.5")
+    ax.legend(fontsize=8)
+    if contacts is not None:
+        ax2 = axes[0, 1]
+        pred = [philipse_contact_number(p, a) for p, a in zip(phi, alpha, strict=True)]
+        ax2.plot(alpha, contacts, "o", color=PALETTE[0], label="simulated ⟨c⟩ (bulk rods)")
+        ax2.plot(alpha, pred, "s", mfc="none", color=PALETTE[1], label="Philipse: φ(6α²+24α+16)/(3α+2)")
+        ax2.set(xlabel="aspect ratio α", ylabel="⟨c⟩")
+        ax2.legend(fontsize=8)
+    save_figure(fig, path)
+    return Path(path)
