@@ -636,6 +636,18 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     pl.set_defaults(func=_cmd_rodpile_plot)
 
 
+#: Entry-point group through which other packages (e.g. ``controllers``) add subcommands: each entry point is a
+#: function ``register(subparsers)``. hairbrush_env itself never imports them.
+COMMAND_GROUP = "hairbrush_env.commands"
+
+
+def _add_plugins(sub: argparse._SubParsersAction) -> None:
+    from importlib import metadata
+
+    for ep in sorted(metadata.entry_points(group=COMMAND_GROUP), key=lambda e: e.name):
+        ep.load()(sub)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="hairbrush",
@@ -648,6 +660,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_compare(sub)
     _add_helix(sub)
     _add_census(sub)
+    _add_plugins(sub)
     _add_rodpile(sub)
     return parser
 

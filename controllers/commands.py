@@ -1,0 +1,43 @@
+"""``hairbrush`` subcommands contributed by the controllers package (entry-point group
+``hairbrush_env.commands``): ``hairbrush vision calibrate``."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+
+def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
+    from hairbrush_env.io import write_json, write_text
+
+    from .vision_calibration import plot_calibration, rank_correlation, render_rows, rows_to_csv
+
+    presets = None if args.wigs == "all" else [w.strip() for w in args.wigs.split(",") if w.strip()]
+    seeds = [int(s) for s in args.seeds.split(",")]
+    try:
+        rows = render_rows(presets, seeds=seeds, jitters=args.jitters, progress=not args.quiet)
+    except ValueError as exc:
+        raise SystemExit(f"hairbrush vision calibrate: {exc}") from exc
+    out = Path(args.out)
+    rho = rank_correlation(rows)
+    write_text(out / "vision_calibration.csv", rows_to_csv(rows))
+    write_json(out / "vision_calibration.json", {"spearman_rho": rho, "n_images": len(rows)})
+    plot_calibration(rows, out / "vision_calibration.png")
+    for cond, r in rho.items():
+        print(f"Spearman rho (R_c vs R/P), {cond}: {r:.3f}")
+    print(f"wrote {out / 'vision_calibration.png'}, .csv, .json")
+    return 0
+
+
+def register_vision(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("vision", help="vision curliness R_c (thesis eq. 3.5): calibration on rendered wigs")
+    vsub = p.add_subparsers(dest="action", required=True, metavar="ACTION")
+    cal = vsub.add_parser(
+        "calibrate", help="R_c vs true R/P for every preset (thesis Fig. 3.4): PNG, CSV, JSON"
+    )
+    cal.add_argument("--wigs", default="all", help="comma-separated presets or 'all'")
+    cal.add_argument("--seeds", default="0,1,2", help="pre-brushed states per wig (comma-separated)")
+    cal.add_argument("--jitters", type=int, default=3, help="camera placements per state (first is nominal)")
+    cal.add_argument("--out", default="runs/vision")
+    cal.add_argument("--quiet", action="store_true")
+    cal.set_defaults(func=_cmd_vision_calibrate)
