@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any, ClassVar
 
+import gymnasium as gym
 import numpy as np
+from gymnasium import spaces
 
 #: Pain threshold of the thesis (chapter 3, Algorithm 1): F_T ≈ 10 N.
 PAIN_THRESHOLD_N = 10.0
@@ -87,3 +90,83 @@ def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float):
     return dataclasses.replace(
         base, load_cell=dataclasses.replace(base.load_cell, noise_std=float(load_cell_noise))
     )
+
+
+OBS_MODES = ("state", "image", "state+image")
+
+
+class BrushEnvBase(gym.Env):
+    """What both brushing envs share: argument checks, the compiled scene, webcam images, reset, info."""
+
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["rgb_array"], "render_fps": 10}
+
+    def _setup(
+        self,
+        *,
+        wig: Any,
+        obs_mode: str,
+        render_mode: str | None,
+        width: int,
+        height: int,
+        force_threshold: float,
+        n_wig_states: int,
+        detangled_fraction: float,
+        reward: RewardConfig | None,
+        load_cell_noise: float,
+    ) -> None:
+        from ..scene import BrushingSim  # deferred: importing the package must stay cheap
+
+        if obs_mode not in OBS_MODES:
+            raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
+        if render_mode not in (None, *self.metadata["render_modes"]):
+            raise ValueError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
+        if int(n_wig_states) != n_wig_states or n_wig_states < 1:
+            raise ValueError(f"n_wig_states: must be a positive integer, got {n_wig_states!r}")
+        if not (0.0 <= detangled_fraction < 1.0):
+            raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
+        for name, value in (("width", width), ("height", height)):
+            if int(value) != value or not 16 <= value <= 2048:
+                raise ValueError(f"{name}: must be an integer in [16, 2048], got {value!r}")
+        self.obs_mode = obs_mode
+        self.render_mode = render_mode
+        self.width, self.height = int(width), int(height)
+        self.force_threshold = check_positive("force_threshold", force_threshold)
+        self.n_wig_states = int(n_wig_states)
+        self.detangled_fraction = float(detangled_fraction)
+        self.reward_config = reward if reward is not None else RewardConfig()
+        self.sim = BrushingSim(
+            make_scene_config(wig, width=width, height=height, load_cell_noise=load_cell_noise)
+        )
+        self._e0 = self._e = 1.0
+        self._pain = 0
+
+    def _image_space(self) -> spaces.Box:
+        return spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
+
+    def _reset_sim(self, seed: int | None) -> None:
+        """Seed the env, restore a pre-brushed wig and reset the episode's bookkeeping."""
+        super().reset(seed=seed)
+        # The seed picks one of a few cached pre-brushed states (shaking a wig anew on every reset would cost
+        # seconds); the load-cell noise of the episode also comes from self.np_random.
+        self.sim.reset(int(self.np_random.integers(self.n_wig_states)))
+        self.sim.load_cell.rng = self.np_random
+        self._e0 = self._e = self.sim.entanglement()
+        self._pain = 0
+
+    def _common_info(self, diverged: bool) -> dict[str, Any]:
+        return {
+            "pain_violations": self._pain,
+            "entanglement": float(self._e),
+            "entanglement_initial": float(self._e0),
+            "curliness_true": float(self.sim.curliness_true),
+            "diverged": bool(diverged),
+            "wig": self.sim.wig.name,
+        }
+
+    def render(self):
+        if self.render_mode == "rgb_array":
+            return self.sim.render()
+        return None
+
+    def close(self):
+        self.sim.close()

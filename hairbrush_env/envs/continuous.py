@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import Any, ClassVar
+from typing import Any
 
-import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import EzPickle
@@ -14,17 +13,16 @@ from .common import (
     LOAD_CELL_CAPACITY_N,
     MAX_COUNT,
     PAIN_THRESHOLD_N,
+    BrushEnvBase,
     RewardConfig,
     check_action,
     check_positive,
-    make_scene_config,
 )
-from .stroke import OBS_MODES
 
 CONTROL_DT = 0.1  # 10 Hz, the load cell's rate
 
 
-class HairBrushContinuousEnv(gym.Env, EzPickle):
+class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     r"""Robotic hair brushing with velocity control at 10 Hz.
 
     ## Description
@@ -39,8 +37,8 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
     ## Observation Space
     A `Dict`: `force` `Box(-100, 100, (3,), float32)` (tared load-cell force in the world frame, N, saturating
     at the load cell's capacity), `brush_position` `Box(-1, 1, (3,), float32)` (brush TCP relative to the scalp
-    (root) site, m), `elapsed` `Box(0, 1e4, (1,), float32)` (s), and `image` `Box(0, 255, (height, width, 3), uint8)` when
-    `obs_mode` includes images.
+    (root) site, m), `elapsed` `Box(0, 1e4, (1,), float32)` (s), and `image`
+    `Box(0, 255, (height, width, 3), uint8)` when `obs_mode` includes images.
 
     ## Rewards
     As `HairBrush-v0`: `reward_progress + reward_time + reward_pain`, with the time cost per control step (0.1 s)
@@ -62,8 +60,6 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
     ## Version History
     - v0: initial release.
     """
-
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["rgb_array"], "render_fps": 10}
 
     def __init__(
         self,
@@ -96,31 +92,20 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
             reward=reward,
             load_cell_noise=load_cell_noise,
         )
-        from ..scene import BrushingSim
-
-        if obs_mode not in OBS_MODES:
-            raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
-        if render_mode not in (None, "rgb_array"):
-            raise ValueError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
-        if int(n_wig_states) != n_wig_states or n_wig_states < 1:
-            raise ValueError(f"n_wig_states: must be a positive integer, got {n_wig_states!r}")
-        if not (0.0 <= detangled_fraction < 1.0):
-            raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
-        for name, value in (("width", width), ("height", height)):
-            if int(value) != value or not 16 <= value <= 2048:
-                raise ValueError(f"{name}: must be an integer in [16, 2048], got {value!r}")
-        self.obs_mode = obs_mode
-        self.render_mode = render_mode
-        self.width, self.height = int(width), int(height)
-        self.force_threshold = check_positive("force_threshold", force_threshold)
+        self._setup(
+            wig=wig,
+            obs_mode=obs_mode,
+            render_mode=render_mode,
+            width=width,
+            height=height,
+            force_threshold=force_threshold,
+            n_wig_states=n_wig_states,
+            detangled_fraction=detangled_fraction,
+            reward=reward,
+            load_cell_noise=load_cell_noise,
+        )
         self.max_vertical_speed = check_positive("max_vertical_speed", max_vertical_speed)
         self.max_depth_speed = check_positive("max_depth_speed", max_depth_speed)
-        self.n_wig_states = int(n_wig_states)
-        self.detangled_fraction = float(detangled_fraction)
-        self.reward_config = reward if reward is not None else RewardConfig()
-        self.sim = BrushingSim(
-            make_scene_config(wig, width=width, height=height, load_cell_noise=load_cell_noise)
-        )
 
         self.action_space = spaces.Box(-1.0, 1.0, shape=(2,), dtype=np.float32)
         obs_spaces: dict[str, spaces.Space] = {}
@@ -131,20 +116,15 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
                 elapsed=spaces.Box(0.0, MAX_COUNT, shape=(1,), dtype=np.float32),
             )
         if "image" in obs_mode:
-            obs_spaces["image"] = spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
+            obs_spaces["image"] = self._image_space()
         self.observation_space = spaces.Dict(obs_spaces)
         self._force = np.zeros(3)
-        self._e0 = self._e = 1.0
         self._t = 0.0
-        self._pain = 0
         self._max_force = 0.0
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
-        super().reset(seed=seed)
-        self.sim.reset(int(self.np_random.integers(self.n_wig_states)))
-        self.sim.load_cell.rng = self.np_random  # episode noise from the env's generator
-        self._e0 = self._e = self.sim.entanglement()
-        self._t, self._pain, self._max_force = 0.0, 0, 0.0
+        self._reset_sim(seed)
+        self._t, self._max_force = 0.0, 0.0
         self._force = np.zeros(3)
         return self._obs(), self._info(False)
 
@@ -178,14 +158,6 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
         terminated = e_now <= self.detangled_fraction * self._e0
         return self._obs(), float(sum(terms.values())), bool(terminated), False, info
 
-    def render(self):
-        if self.render_mode == "rgb_array":
-            return self.sim.render()
-        return None
-
-    def close(self):
-        self.sim.close()
-
     def _obs(self) -> dict[str, np.ndarray]:
         obs: dict[str, np.ndarray] = {}
         if "state" in self.obs_mode:
@@ -201,12 +173,7 @@ class HairBrushContinuousEnv(gym.Env, EzPickle):
 
     def _info(self, diverged: bool) -> dict[str, Any]:
         return {
+            **self._common_info(diverged),
             "max_force": float(self._max_force),
-            "pain_violations": self._pain,
-            "entanglement": float(self._e),
-            "entanglement_initial": float(self._e0),
-            "curliness_true": float(self.sim.curliness_true),
             "sim_time": float(self._t),
-            "diverged": bool(diverged),
-            "wig": self.sim.wig.name,
         }

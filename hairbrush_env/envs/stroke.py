@@ -3,9 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import Any, ClassVar
+from typing import Any
 
-import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import EzPickle
@@ -14,16 +13,14 @@ from .common import (
     LOAD_CELL_CAPACITY_N,
     MAX_COUNT,
     PAIN_THRESHOLD_N,
+    BrushEnvBase,
     RewardConfig,
     check_action,
     check_positive,
-    make_scene_config,
 )
 
-OBS_MODES = ("state", "image", "state+image")
 
-
-class HairBrushEnv(gym.Env, EzPickle):
+class HairBrushEnv(BrushEnvBase, EzPickle):
     r"""Robotic hair brushing at the stroke level.
 
     ## Description
@@ -97,8 +94,6 @@ class HairBrushEnv(gym.Env, EzPickle):
     - v0: initial release.
     """
 
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["rgb_array"], "render_fps": 10}
-
     def __init__(
         self,
         *,
@@ -132,34 +127,22 @@ class HairBrushEnv(gym.Env, EzPickle):
             reward=reward,
             load_cell_noise=load_cell_noise,
         )
-        from ..scene import BrushingSim  # deferred: importing the package must stay cheap
-
-        if obs_mode not in OBS_MODES:
-            raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
-        if render_mode not in (None, *self.metadata["render_modes"]):
-            raise ValueError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
+        self._setup(
+            wig=wig,
+            obs_mode=obs_mode,
+            render_mode=render_mode,
+            width=width,
+            height=height,
+            force_threshold=force_threshold,
+            n_wig_states=n_wig_states,
+            detangled_fraction=detangled_fraction,
+            reward=reward,
+            load_cell_noise=load_cell_noise,
+        )
         if not (0.0 < min_brush_length < 1.0):
             raise ValueError(f"min_brush_length: must be in (0, 1), got {min_brush_length!r}")
-        if int(n_wig_states) != n_wig_states or n_wig_states < 1:
-            raise ValueError(f"n_wig_states: must be a positive integer, got {n_wig_states!r}")
-        if not (0.0 <= detangled_fraction < 1.0):
-            raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
-        for name, value in (("width", width), ("height", height)):
-            if int(value) != value or not 16 <= value <= 2048:
-                raise ValueError(f"{name}: must be an integer in [16, 2048], got {value!r}")
-        self.obs_mode = obs_mode
-        self.render_mode = render_mode
-        self.force_threshold = check_positive("force_threshold", force_threshold)
         self.stroke_speed = check_positive("stroke_speed", stroke_speed)
         self.min_brush_length = float(min_brush_length)
-        self.n_wig_states = int(n_wig_states)
-        self.detangled_fraction = float(detangled_fraction)
-        self.reward_config = reward if reward is not None else RewardConfig()
-        self.width, self.height = int(width), int(height)
-
-        self.sim = BrushingSim(
-            make_scene_config(wig, width=width, height=height, load_cell_noise=load_cell_noise)
-        )
         if trace_length is None:
             # a full stroke at 10 Hz: the hanging length plus the clearance below the free ends, with margin for
             # hair that hangs lower after settling
@@ -181,13 +164,11 @@ class HairBrushEnv(gym.Env, EzPickle):
                 stroke_index=spaces.Box(0.0, MAX_COUNT, shape=(1,), dtype=np.float32),
             )
         if "image" in obs_mode:
-            obs_spaces["image"] = spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
+            obs_spaces["image"] = self._image_space()
         self.observation_space = spaces.Dict(obs_spaces)
 
         self._last: dict[str, Any] = {}
-        self._e0 = self._e = 1.0
         self._strokes = 0
-        self._pain = 0
         self._sim_time = 0.0
         self._prev_fmax: float | None = None
 
@@ -205,12 +186,8 @@ class HairBrushEnv(gym.Env, EzPickle):
 
     # --- gymnasium API -----------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict | None = None):
-        super().reset(seed=seed)
-        # The seed picks one of a few cached pre-brushed states (shaking a wig anew on every reset would cost
-        # seconds); the load-cell noise of the episode also comes from self.np_random.
-        self.sim.reset(int(self.np_random.integers(self.n_wig_states)))
-        self._e0 = self._e = self.sim.entanglement()
-        self._strokes, self._pain, self._sim_time = 0, 0, 0.0
+        self._reset_sim(seed)
+        self._strokes, self._sim_time = 0, 0.0
         self._prev_fmax = None
         self._last = {
             "force_trace": np.zeros(self.trace_length, np.float32),
@@ -258,14 +235,6 @@ class HairBrushEnv(gym.Env, EzPickle):
         reward = float(sum(terms.values()))
         return self._obs(), reward, bool(finished or detangled), False, info
 
-    def render(self):
-        if self.render_mode == "rgb_array":
-            return self.sim.render()
-        return None
-
-    def close(self):
-        self.sim.close()
-
     # --- helpers -----------------------------------------------------------------------------------------------
     def _trace(self, forces: np.ndarray) -> np.ndarray:
         out = np.zeros(self.trace_length, np.float32)
@@ -288,14 +257,9 @@ class HairBrushEnv(gym.Env, EzPickle):
 
     def _info(self, *, diverged: bool, aborted: bool) -> dict[str, Any]:
         return {
+            **self._common_info(diverged),
             "max_force": float(self._last.get("max_force", 0.0)),
             "brush_length": float(self._last.get("brush_length", 0.0)),
-            "pain_violations": self._pain,
-            "entanglement": float(self._e),
-            "entanglement_initial": float(self._e0),
-            "curliness_true": float(self.sim.curliness_true),
             "sim_time": float(self._sim_time),
-            "diverged": bool(diverged),
             "aborted": bool(aborted),
-            "wig": self.sim.wig.name,
         }
