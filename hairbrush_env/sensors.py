@@ -8,6 +8,12 @@ the site reads +9.81 N along the site's up axis.)  The world-frame force is ther
 
     F_world = R_site @ F_site,        R_site = data.site_xmat[load_cell].reshape(3, 3)
 
+**Flex contacts.** MuJoCo 4.0's force/torque sensors (and ``cfrc_ext``) leave out contacts with flex elements:
+a rod resting on a sensorized plate reads as the plate's weight alone (checked in ``tests/test_sensors.py``).
+Hair is made of flexes, so :meth:`LoadCell.raw` adds the missing term itself: for every contact between a geom
+of the sensor's subtree and a flex, the contact force on the subtree (``mj_contactForce``, contact frame →
+world) and its moment about the site; the parent must balance it, so the reading changes by minus that wrench.
+
 Instrument model, in this order: sample-and-hold at ``rate_hz`` of *simulation* time → subtract the tare
 (site frame, like a real cell's zeroing of its own channels) → add Gaussian noise (site frame) →
 quantize to ``resolution`` → rotate to the world frame.
@@ -149,6 +155,14 @@ class LoadCell:
         if force_site != torque_site:
             raise ValueError("force and torque sensors must share one site (one 6-axis load cell)")
         self.site_id = force_site
+        # Geoms of the body subtree the sensor weighs (the site's body and its descendants): their contacts
+        # with flexes are added by hand (see the module docstring).
+        root = int(model.site_bodyid[force_site])
+        in_subtree = np.zeros(model.nbody, dtype=bool)
+        for b in range(model.nbody):  # bodies are numbered parents first, so one pass suffices
+            in_subtree[b] = b == root or (b > 0 and in_subtree[model.body_parentid[b]])
+        self._subtree_geom = in_subtree[model.geom_bodyid]
+        self._model = model
         self._tare = np.zeros(6)
         self.samples: list[LoadCellSample] = []
         self.reset(data)
@@ -169,11 +183,39 @@ class LoadCell:
         self._last_index = 0
         self.samples = []
 
+    def flex_contact_wrench(self, data: mujoco.MjData) -> NDArray[np.float64]:
+        """World-frame ``[force, torque about the site]`` that flexes (hair) exert on the sensed subtree."""
+        out = np.zeros(6)
+        n = data.ncon
+        if n == 0:
+            return out
+        geom = data.contact.geom[:n]
+        flex = data.contact.flex[:n]
+        ok = self._subtree_geom
+        # slot s holds a subtree geom and the other slot a flex
+        hits = [(i, 0) for i in np.flatnonzero((geom[:, 0] >= 0) & (flex[:, 1] >= 0)) if ok[geom[i, 0]]]
+        hits += [(i, 1) for i in np.flatnonzero((geom[:, 1] >= 0) & (flex[:, 0] >= 0)) if ok[geom[i, 1]]]
+        f6 = np.zeros(6)
+        site = data.site_xpos[self.site_id]
+        for i, slot in hits:
+            mujoco.mj_contactForce(self._model, data, int(i), f6)
+            frame = data.contact.frame[i].reshape(3, 3)
+            # contact force acts on slot 1 along +normal (slot 0 → slot 1) and on slot 0 oppositely
+            f_world = frame.T @ f6[:3] * (1.0 if slot == 1 else -1.0)
+            out[:3] += f_world
+            out[3:] += np.cross(data.contact.pos[i] - site, f_world)
+        return out
+
     def raw(self, data: mujoco.MjData) -> NDArray[np.float64]:
-        """Noise-free, un-tared wrench ``[force, torque]`` in the site frame from ``data.sensordata``."""
+        """Noise-free, un-tared wrench ``[force, torque]`` in the site frame: the sensors plus the flex contacts."""
         out = np.empty(6)
         out[:3] = data.sensordata[self._force_adr : self._force_adr + 3]
         out[3:] = data.sensordata[self._torque_adr : self._torque_adr + 3]
+        ext = self.flex_contact_wrench(data)
+        if ext.any():
+            rot = data.site_xmat[self.site_id].reshape(3, 3)
+            out[:3] -= rot.T @ ext[:3]  # the parent balances the hair's push: minus the external wrench
+            out[3:] -= rot.T @ ext[3:]
         return out
 
     def tare(self, data: mujoco.MjData) -> None:

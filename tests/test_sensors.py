@@ -165,3 +165,39 @@ def test_known_static_load_read_back_after_tare(arm_brush: mujoco.MjModel, yaw_d
         # The raw site-frame channels differ from the world vector: the transform was really exercised.
         site_frame = np.mean([r.force for r in reads], axis=0)
         assert np.linalg.norm(site_frame[:2] - world[:2]) > 0.2
+
+
+def test_flex_contacts_reach_the_load_cell():
+    """MuJoCo's force sensor ignores flex contacts; LoadCell adds them: a rod resting on a sensorized plate must
+    read as plate + rod weight, with the rod's moment about the site (statics, exact)."""
+    from hairbrush_env.rods import RodSpec, add_rod, configure_rod_options, straight_rod_points
+
+    spec = mujoco.MjSpec()
+    configure_rod_options(spec, timestep=2e-3)
+    plate = spec.worldbody.add_body(name="plate", pos=[0, 0, 0.1])
+    plate.add_site(name="cell")
+    plate.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.2, 0.2, 0.005], mass=0.1)
+    for name, kind in (("f", mujoco.mjtSensor.mjSENS_FORCE), ("t", mujoco.mjtSensor.mjSENS_TORQUE)):
+        spec.add_sensor(name=name, type=kind, objtype=mujoco.mjtObj.mjOBJ_SITE, objname="cell")
+    rod = RodSpec(
+        name="rod",
+        points=straight_rod_points([0.0, 0, 0.115], [1, 0, 0], 0.15, n_edges=10),
+        radius=0.004,
+        young=1e8,
+        density=1300,
+        clamp=None,
+        friction=0.5,
+    )
+    add_rod(spec, rod)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    quiet = LoadCellConfig(force_sensor="f", torque_sensor="t", noise_std=0, resolution=0, torque_noise_std=0,
+                           torque_resolution=0)  # fmt: skip
+    cell = LoadCell(model, quiet, rng=np.random.default_rng(0))
+    for _ in range(2000):
+        mujoco.mj_step(model, data)
+    w_rod = rod.length * rod.linear_density * 9.81
+    assert data.sensordata[2] == pytest.approx(0.1 * 9.81)  # the bare sensor misses the rod entirely
+    wrench = cell.raw(data)
+    assert wrench[2] == pytest.approx(0.1 * 9.81 + w_rod, rel=1e-6)
+    assert wrench[4] == pytest.approx(-0.075 * w_rod, rel=1e-4)  # rod's centre of mass 7.5 cm along +x
