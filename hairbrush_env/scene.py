@@ -337,6 +337,7 @@ class BrushingSim:
             dtype=int,
         )
         self._renderer: mujoco.Renderer | None = None
+        self._observers: list = []
         self.diverged = False
 
         # Wig geometry in the world: x range of the curtain (for the retracted brush) and the stroke depth.
@@ -411,6 +412,14 @@ class BrushingSim:
         self.load_cell.reset(self.data)
         self.load_cell.tare(self.data)
 
+    # --------------------------------------------------------------------------------------- observers
+    def add_observer(self, fn) -> None:
+        """Call ``fn(sim, sample)`` at every load-cell sample (10 Hz of simulated time), e.g. to record frames."""
+        self._observers.append(fn)
+
+    def remove_observer(self, fn) -> None:
+        self._observers.remove(fn)
+
     # --------------------------------------------------------------------------------------- stepping
     def _warnings(self) -> int:
         return int(sum(int(w.number) for w in self.data.warning))
@@ -434,8 +443,11 @@ class BrushingSim:
         for _ in range(self._n_sub):
             mujoco.mj_step(self.model, self.data)
             s = self.load_cell.update(self.data)
-            if s is not None and samples is not None:
-                samples.append(s)
+            if s is not None:
+                if samples is not None:
+                    samples.append(s)
+                for fn in self._observers:
+                    fn(self, s)
         self._target = np.asarray(target, dtype=float).copy()
         return not self._check()
 
@@ -550,7 +562,10 @@ class BrushingSim:
         hi = np.array([self.root_origin[0] + 0.02, 0.05, min(self.top_z, _WORKSPACE_Z[1])])
         for _ in range(n):
             target = np.clip(self._target + vel * self.config.control_dt, lo, hi)
-            if not self._tick(target, vel, samples):
+            # feed forward the velocity the target really has: at a workspace limit it is zero, and feeding the
+            # commanded one forward would push the servos past the limit
+            actual = (target - self._target) / self.config.control_dt
+            if not self._tick(target, actual, samples):
                 break
         forces = np.array([s.brushing_force() for s in samples])
         return VelocityStep(

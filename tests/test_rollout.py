@@ -24,11 +24,11 @@ def test_policies_registered_by_entry_point():
 
 
 def test_run_episode_full_policy_finishes_by_eq_3_4():
-    wig = get_wig("straight").replace(name="test_tiny", n_strands=4, n_triples=0, length=0.12)
+    wig = get_wig("curly").replace(name="test_tiny_curly", n_strands=4, n_triples=0, length=0.16)
     env = gym.make("HairBrush-v0", wig=wig)
     log = run_episode(env, make_policy("full", env), episode=0, seed=0, policy_name="full")
     env.close()
-    # full strokes on a straight wig: forces stay far below F_T and settle, so the finish rule ends the episode
+    # full strokes on a small wig: forces stay far below F_T and settle, so the finish rule ends the episode
     assert log.terminated and not log.truncated and not log.diverged
     assert 2 <= len(log.steps) <= 30
     assert all(s.brush_length == pytest.approx(1.0) for s in log.steps)
