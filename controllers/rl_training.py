@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 from dataclasses import asdict, dataclass
 from pathlib import Path
+from typing import Any
 
 ALGOS = ("ppo", "sac")
 
@@ -22,8 +23,9 @@ class TrainConfig:
     total_timesteps: int = 2000
     n_envs: int = 2
     seed: int = 0
-    wig: str = "curly"
+    wig: Any = "curly"  # preset name or WigConfig
     obs_mode: str = "state"
+    max_episode_steps: int | None = None  # None: the registered limit
     eval_freq: int = 500  # env steps (summed over workers) between evaluations
     eval_episodes: int = 2
     checkpoint_freq: int = 1000
@@ -70,7 +72,9 @@ def train(cfg: TrainConfig, out: str | Path):
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    env_kwargs = {"wig": cfg.wig, "obs_mode": cfg.obs_mode}
+    env_kwargs: dict[str, Any] = {"wig": cfg.wig, "obs_mode": cfg.obs_mode}
+    if cfg.max_episode_steps is not None:
+        env_kwargs["max_episode_steps"] = int(cfg.max_episode_steps)  # consumed by gymnasium.make
     vec_cls = SubprocVecEnv if (cfg.vec_env == "subproc" and cfg.n_envs > 1) else DummyVecEnv
     venv = make_vec_env(cfg.env, n_envs=cfg.n_envs, seed=cfg.seed, env_kwargs=env_kwargs, vec_env_cls=vec_cls)
     eval_env = make_vec_env(cfg.env, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs)
@@ -95,7 +99,7 @@ def train(cfg: TrainConfig, out: str | Path):
         model.learn(total_timesteps=cfg.total_timesteps, callback=callbacks, progress_bar=cfg.progress_bar)
         model.save(out / "model.zip")
         (out / "algo.txt").write_text(cfg.algo.upper() + "\n")
-        (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2) + "\n")
+        (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
     finally:
         venv.close()
         eval_env.close()

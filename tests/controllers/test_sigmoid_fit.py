@@ -19,7 +19,9 @@ def test_fit_k_lies_below_points_and_is_tight():
     for r, s in zip(rc, safe, strict=True):
         assert start_height(r, k=k) <= s + 1e-12
     # tight: the binding point sits on the curve
-    assert min(s - start_height(r, k=k) for r, s in zip(rc, safe, strict=True)) == pytest.approx(0.0, abs=1e-9)
+    assert min(s - start_height(r, k=k) for r, s in zip(rc, safe, strict=True)) == pytest.approx(
+        0.0, abs=1e-9
+    )
 
 
 def test_fit_k_reports_conflict():

@@ -13,7 +13,10 @@ from hairbrush_env.hair import PRESETS
 
 def test_vision_calibrate_cli_ranks_presets(tmp_path):
     # reduced: one pre-brushed state per wig, nominal + one jittered camera; the README run uses 3 × 3
-    assert main(["vision", "calibrate", "--seeds", "0", "--jitters", "2", "--out", str(tmp_path), "--quiet"]) == 0
+    assert (
+        main(["vision", "calibrate", "--seeds", "0", "--jitters", "2", "--out", str(tmp_path), "--quiet"])
+        == 0
+    )
     summary = json.loads((tmp_path / "vision_calibration.json").read_text())
     assert summary["n_images"] == len(PRESETS) * 2 * 3
     rho = summary["spearman_rho"]
