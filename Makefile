@@ -17,9 +17,12 @@ $(VENV)/.installed: pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install -e ".[dev,rl]"
 	touch $@
 
-# The main job: a headless run that writes a recording and a plot into $(OUT).
+# The main job: a headless closed-loop (sigmoid, thesis Algorithm 1) brushing rollout on a curly wig that writes a
+# rerun recording, a video, a JSON summary and a plot into $(OUT).
 run: $(VENV)/.installed
-	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush topology demo --out $(OUT)
+	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush rollout --env HairBrush-v0 --wig curly --policy sigmoid \
+		--episodes 1 --seed 0 --rerun $(OUT)/rollout.rrd --video $(OUT)/rollout.mp4 \
+		--json $(OUT)/rollout.json --plot $(OUT)/rollout.png
 
 # Default suite (< 10 min on 2 cores); long physics runs are marked `slow`.
 test: $(VENV)/.installed

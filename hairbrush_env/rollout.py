@@ -20,6 +20,7 @@ class StepLog:
     index: int
     t_start: float  # simulated brushing time at the start of the step [s]
     forces: list[float]  # brushing-force samples at 10 Hz [N]
+    times: list[float]  # episode time of each sample [s]
     max_force: float
     entanglement: float
     reward: float
@@ -106,6 +107,7 @@ def run_episode(
             index=len(log.steps),
             t_start=t_start,
             forces=forces,
+            times=[float(t) for t in info.get("force_times", ())],
             max_force=float(max(forces, default=0.0)),
             entanglement=float(info["entanglement"]),
             reward=float(reward),

@@ -95,15 +95,20 @@ class EpisodeRecorder:
     def _at(self, t: float) -> None:
         self._rec.set_time("t", duration=self._offset + float(t))
 
-    def frame(self, t: float, strands: Sequence[np.ndarray], groups: Sequence[int], brush: np.ndarray) -> None:
+    def frame(
+        self, t: float, strands: Sequence[np.ndarray], groups: Sequence[int], brush: np.ndarray
+    ) -> None:
         """Log the strands (coloured by their entwined group) and the brush position at sim time ``t``."""
         rr = self._rr
         self._at(t)
         colors = [rgb(PALETTE[g % len(PALETTE)]) for g in groups]
         self._rec.log(
-            "scene/hair", rr.LineStrips3D([np.asarray(s, np.float32) for s in strands], colors=colors, radii=0.0008)
+            "scene/hair",
+            rr.LineStrips3D([np.asarray(s, np.float32) for s in strands], colors=colors, radii=0.0008),
         )
-        self._rec.log("scene/brush", rr.Points3D([np.asarray(brush, np.float32)], radii=0.01, colors=[(40, 40, 40)]))
+        self._rec.log(
+            "scene/brush", rr.Points3D([np.asarray(brush, np.float32)], radii=0.01, colors=[(40, 40, 40)])
+        )
 
     def force(self, t: float, value: float) -> None:
         self._at(t)
@@ -151,8 +156,10 @@ class VideoWriter:
         self._ctx.__exit__(None, None, None)
 
 
-def plot_rollout(episodes: Sequence[Mapping], path: str | os.PathLike[str], *, force_threshold: float = 10.0) -> None:
-    """Force vs time (10 Hz samples, strokes laid end to end) and max force per stroke, one colour per episode.
+def plot_rollout(
+    episodes: Sequence[Mapping], path: str | os.PathLike[str], *, force_threshold: float = 10.0
+) -> None:
+    """Force vs episode time (10 Hz samples) and max force per stroke, one colour per episode.
 
     ``episodes`` are dicts as produced by :meth:`hairbrush_env.rollout.EpisodeLog.to_dict`.
     """
@@ -162,15 +169,18 @@ def plot_rollout(episodes: Sequence[Mapping], path: str | os.PathLike[str], *, f
         color = PALETTE[i % len(PALETTE)]
         t_all, f_all = [], []
         for step in ep["steps"]:
-            n = len(step["forces"])
-            t_all.extend(step["t_start"] + 0.1 * np.arange(n))
+            t_all.extend(step["times"])
             f_all.extend(step["forces"])
             t_all.append(np.nan)  # break the line between strokes
             f_all.append(np.nan)
         label = f"{ep['policy']} · {ep['wig']} · ep {ep['episode']}"
         ax_t.plot(t_all, f_all, color=color, lw=1.2, label=label)
         ax_s.plot(
-            np.arange(1, len(ep["steps"]) + 1), [s["max_force"] for s in ep["steps"]], "o-", color=color, label=label
+            np.arange(1, len(ep["steps"]) + 1),
+            [s["max_force"] for s in ep["steps"]],
+            "o-",
+            color=color,
+            label=label,
         )
     for ax in (ax_t, ax_s):
         ax.axhline(force_threshold, color="k", ls="--", lw=1, label="pain threshold F_T")

@@ -49,7 +49,10 @@ def test_rollout_cli_writes_everything(tmp_path):
     data = json.loads(out["json"].read_text())
     (ep,) = data["episodes"]
     assert ep["policy"] == "full" and ep["wig"] == "straight" and ep["strokes"] >= 1
-    assert len(ep["steps"][0]["forces"]) >= 10  # a full stroke sampled at 10 Hz
+    first = ep["steps"][0]
+    assert len(first["forces"]) >= 10  # a full stroke sampled at 10 Hz
+    assert len(first["times"]) == len(first["forces"])
+    assert first["times"][1] - first["times"][0] == pytest.approx(0.1)
     for path in out.values():
         assert path.stat().st_size > 1000, path
     with pytest.raises(SystemExit, match="unknown policy"):

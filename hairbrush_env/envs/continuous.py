@@ -154,7 +154,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         )
         self._e = e_now
         info = self._info(False)
-        info.update(terms, brushing_force=brushing, force_samples=[brushing])
+        info.update(terms, brushing_force=brushing, force_samples=[brushing], force_times=[self._t])
         terminated = e_now <= self.detangled_fraction * self._e0
         return self._obs(), float(sum(terms.values())), bool(terminated), False, info
 

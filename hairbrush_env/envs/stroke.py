@@ -70,7 +70,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     `max_force`, `pain_violations` (strokes so far whose force reached F_T), `entanglement`,
     `entanglement_initial`, `curliness_true` (R/P of the wig), `sim_time` (simulated brushing time so far, s),
     `diverged`, `brush_length`, `aborted`, `wig` (preset name), `force_samples` (the stroke's 10 Hz force samples,
-    unpadded), `finished_rule` (eq. 3.4), `detangled`, and the reward terms.
+    unpadded) and `force_times` (their episode times, s), `finished_rule` (eq. 3.4), `detangled`, and the reward terms.
 
     ## Arguments
     `gymnasium.make("HairBrush-v0", wig="curly", obs_mode="state+image")`, keyword-only:
@@ -203,6 +203,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             b_l, speed=self.stroke_speed, force_threshold=self.force_threshold, rng=self.np_random
         )
         forces = np.asarray(result.force_trace[1], dtype=np.float64)
+        # episode time of each sample: the load cell's clock restarts at the pull, its first samples are the pull's
+        times = self.sim.load_cell.times()[: len(forces)].tolist()
         self._strokes += 1
         self._sim_time += result.sim_time
         if result.diverged:
@@ -210,7 +212,13 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
                 force_trace=self._trace(forces), max_force=float(result.max_force), brush_length=b_l
             )
             info = self._info(diverged=True, aborted=result.aborted)
-            info.update(reward_progress=0.0, reward_time=0.0, reward_pain=0.0, force_samples=forces.tolist())
+            info.update(
+                reward_progress=0.0,
+                reward_time=0.0,
+                reward_pain=0.0,
+                force_samples=forces.tolist(),
+                force_times=times,
+            )
             return self._obs(), 0.0, False, True, info
         e_now = self.sim.entanglement()
         terms = self.reward_config.terms(
@@ -231,7 +239,13 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         self._prev_fmax = f_max
         self._last.update(force_trace=self._trace(forces), max_force=f_max, brush_length=b_l)
         info = self._info(diverged=False, aborted=result.aborted)
-        info.update(terms, finished_rule=finished, detangled=detangled, force_samples=forces.tolist())
+        info.update(
+            terms,
+            finished_rule=finished,
+            detangled=detangled,
+            force_samples=forces.tolist(),
+            force_times=times,
+        )
         reward = float(sum(terms.values()))
         return self._obs(), reward, bool(finished or detangled), False, info
 
