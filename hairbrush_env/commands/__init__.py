@@ -1,0 +1,1 @@
+"""``hairbrush`` subcommand groups; each module has ``register(subparsers)``."""

@@ -1,0 +1,176 @@
+"""Chapter-2 studies: ``hairbrush helix run|sweep`` and ``hairbrush census``."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+
+def _helix_setup(args: argparse.Namespace):
+    from ..studies.double_helix import CombingSetup, replace_setup
+
+    changes = {}
+    for item in args.set or []:
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise SystemExit(f"hairbrush helix: --set expects KEY=VALUE, got {item!r}")
+        changes[key.strip()] = value.strip()
+    try:
+        return replace_setup(CombingSetup(), **changes)
+    except (TypeError, ValueError) as exc:
+        raise SystemExit(f"hairbrush helix: {exc}") from exc
+
+
+def _cmd_helix_run(args: argparse.Namespace) -> int:
+    from tqdm import tqdm
+
+    from ..studies.double_helix import run_combing, write_run
+
+    setup = _helix_setup(args)
+    with tqdm(total=100, desc="combing", unit="%") as bar:
+
+        def progress(frac: float) -> None:
+            bar.update(max(0, round(100 * frac) - bar.n))
+
+        res = run_combing(setup, seed=args.seed, progress=progress)
+    paths = write_run(res, args.out)
+    print(
+        f"f_max = {res.f_max:.3f} at x = {res.x_at_f_max:.2f}; jammed = {res.jammed} (peak/plateau "
+        f"{res.jam_ratio:.2f}); Lk {res.lk0:.2f} -> {res.lk_end:.2f} (trapped above tine {res.lk_above:.2f}; "
+        f"combable link left {100 * res.combed_lk_end_fraction:.1f} %); D = {res.D * 1e3:.1f} mm; "
+        f"{res.wall_time:.1f} s"
+    )
+    print("wrote " + ", ".join(str(p) for p in paths))
+    return 0
+
+
+def _cmd_helix_sweep(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from ..io import write_json, write_text
+    from ..studies.double_helix import (
+        CombingResult,
+        _csv,
+        optimal_q,
+        plot_cost,
+        plot_sweep,
+        replace_setup,
+        run_point,
+    )
+    from ..studies.sweep import run_sweep
+
+    base = _helix_setup(args)
+    name, sep, values = args.vary.partition("=")
+    if not sep or not values:
+        raise SystemExit(f"hairbrush helix sweep: --vary expects NAME=v1,v2,..., got {args.vary!r}")
+    name = name.strip()
+    try:
+        setups = [replace_setup(base, **{name: v.strip()}) for v in values.split(",")]
+    except (TypeError, ValueError) as exc:
+        raise SystemExit(f"hairbrush helix sweep: {exc}") from exc
+    points = [{"setup": s.key(), "seed": seed} for s in setups for seed in range(args.seeds)]
+    out = Path(args.out)
+    raw = run_sweep(run_point, points, out / "cache", workers=args.workers, desc=f"sweep {name}")
+    results = [CombingResult.from_dict(r) for r in raw]
+    vkey = (lambda r: r.setup.q_effective) if name == "q" else (lambda r: float(getattr(r.setup, name)))
+    rows = []
+    curves = []
+    for p, r in zip(points, results, strict=True):
+        s = r.summary()
+        rows.append(
+            [vkey(r), p["seed"], r.f_max, r.x_at_f_max, r.jam_ratio, int(r.jammed), r.D, r.lk0, r.lk_end,
+             r.lk_above, r.combed_lk_end_fraction, r.min_gap_tine / r.setup.radius,
+             r.min_gap_strands / r.setup.radius, s["wall_time"]]
+        )  # fmt: skip
+        curves += [[vkey(r), p["seed"], *row] for row in r.csv_rows()[1].tolist()]
+    header = ["value", "seed", "f_max", "x_at_f_max", "jam_ratio", "jammed", "D_m", "Lk0", "Lk_end", "Lk_above",
+              "combed_lk_end_fraction", "min_gap_tine_over_r", "min_gap_strands_over_r", "wall_time_s"]  # fmt: skip
+    write_text(out / f"sweep_{name}.csv", _csv(header, rows))
+    write_text(out / f"sweep_{name}_curves.csv", _csv(["value", "seed", *results[0].csv_rows()[0]], curves))
+    plot_sweep(results, name, out / f"sweep_{name}.png")
+    print(f"{name:>10} {'f_max':>8} {'jammed':>7} {'Lk0':>6} {'Lk_end':>7} {'combed left':>11}")
+    for row in rows:
+        print(
+            f"{row[0]:>10.3g} {row[2]:>8.3f} {row[5]:>7d} {row[7]:>6.2f} {row[8]:>7.2f} {100 * row[10]:>10.1f}%"
+        )
+    if name == "q":
+        qs = np.array([vkey(r) for r in results])
+        uq = np.unique(qs)
+        fm = np.array([np.mean([r.f_max for r in results if vkey(r) == q]) for q in uq])
+        gammas = np.linspace(0.0, 1.0, 11)
+        best = {f"{g:.1f}": optimal_q(uq, fm, g) for g in gammas}
+        write_json(out / "cost.json", {"q": uq, "f_max": fm, "optimal_q": best})
+        plot_cost(uq, fm, out / "cost.png")
+        print("optimal q per γ (eq. 2.8): " + ", ".join(f"γ={g}: q={q:g}" for g, q in best.items()))
+    print(
+        f"wrote {out}/sweep_{name}.csv, sweep_{name}_curves.csv, sweep_{name}.png"
+        + (", cost.*" if name == "q" else "")
+    )
+    return 0
+
+
+def _add_helix(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("helix", help="combing a double helix with one tine (thesis chapter 2)")
+    hsub = p.add_subparsers(dest="action", required=True, metavar="ACTION")
+    common = argparse.ArgumentParser(add_help=False)
+    common.add_argument(
+        "--set",
+        action="append",
+        metavar="KEY=VALUE",
+        help="override a CombingSetup field, e.g. --set P_over_r=18 --set q=4 (repeatable; q=none = midpoint)",
+    )
+    common.add_argument("--out", default="runs/helix", help="output directory (default: runs/helix)")
+    run = hsub.add_parser(
+        "run", parents=[common], help="one combing run: CSV, JSON and a PNG (Figs 2.2c,e, 2.8)"
+    )
+    run.add_argument("--seed", type=int, default=0)
+    run.set_defaults(func=_cmd_helix_run)
+    sweep = hsub.add_parser(
+        "sweep",
+        parents=[common],
+        help="parallel, cached, resumable sweep of one field (q also writes the eq. 2.8 cost)",
+    )
+    sweep.add_argument("--vary", required=True, metavar="NAME=v1,v2,...", help="e.g. P_over_r=18,24,36,48")
+    sweep.add_argument("--seeds", type=int, default=1, help="seeds per value (default: 1)")
+    sweep.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
+    sweep.set_defaults(func=_cmd_helix_sweep)
+
+
+def _cmd_census(args: argparse.Namespace) -> int:
+    from ..studies.curl_census import CurlSetup, plot_census, run_census_sweep, write_census
+
+    try:
+        setup = CurlSetup(n_hairs=args.hairs, n_edges=args.edges, settle_time=args.settle)
+    except ValueError as exc:
+        raise SystemExit(f"hairbrush census: {exc}") from exc
+    out = Path(args.out)
+    stats = run_census_sweep(setup, seeds=range(args.seeds), cache_dir=out / "cache", workers=args.workers)
+    paths = write_census(stats, out)
+    plot_census(stats, out / "census.png")
+    for crit, table in stats["criteria"].items():
+        cells = ", ".join(
+            f"N={n}: {m:.1f}±{e:.1f}" for n, m, e in zip(table["N"], table["mean"], table["sem"], strict=True)
+        )
+        print(f"{crit:>8}: ρ_N [1/m] {cells}")
+    print("wrote " + ", ".join(str(p) for p in [*paths, out / "census.png"]))
+    return 0
+
+
+def _add_census(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "census", help="N-body interaction census of a simulated 12-hair curl (thesis Figs 2.3b, 2.5)"
+    )
+    p.add_argument("--seeds", type=int, default=4, help="independent curls to average (default: 4)")
+    p.add_argument("--hairs", type=int, default=12, help="hairs per curl (default: 12)")
+    p.add_argument(
+        "--edges", type=int, default=100, help="edges per hair (default: 100, δl = 2 mm as in Fig. 2.10)"
+    )
+    p.add_argument("--settle", type=float, default=1.5, help="simulated seconds of jostling + relaxation")
+    p.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
+    p.add_argument("--out", default="runs/census", help="output directory (default: runs/census)")
+    p.set_defaults(func=_cmd_census)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    _add_helix(sub)
+    _add_census(sub)

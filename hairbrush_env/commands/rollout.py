@@ -1,0 +1,122 @@
+"""Brushing rollouts: ``hairbrush rollout``."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def _cmd_rollout(args: argparse.Namespace) -> int:
+    import gymnasium as gym
+    from tqdm import tqdm
+
+    from ..io import write_json
+    from ..policies import make_policy
+    from ..rollout import run_episode
+    from ..viz import EpisodeRecorder, VideoWriter, plot_rollout
+
+    if args.episodes < 1:
+        raise SystemExit(f"hairbrush rollout: --episodes must be >= 1, got {args.episodes}")
+    try:
+        env = gym.make(
+            args.env,
+            wig=args.wig,
+            obs_mode=args.obs_mode,
+            render_mode="rgb_array",
+            width=args.width,
+            height=args.height,
+        )
+        policy = make_policy(args.policy, env)
+    except ValueError as exc:
+        raise SystemExit(f"hairbrush rollout: {exc}") from exc
+    sim = env.unwrapped.sim
+    recorder = EpisodeRecorder(args.rerun) if args.rerun else None
+    video = VideoWriter(args.video) if args.video else None
+    offset = 0.0
+
+    # colour strands by their entwined group
+    group_of = {i: g for g, members in enumerate(sim.layout.groups) for i in members}
+    groups = [group_of.get(i, 0) for i in range(len(sim.layout.names))]
+
+    def observe(sim_, sample) -> None:
+        # called by the simulation at every load-cell sample (10 Hz), with the episode's simulated time
+        if recorder is not None:
+            recorder.frame(sample.time, sim_.hair_curves(), groups, sim_.brush_position())
+            recorder.force(sample.time, sample.brushing_force())
+        if video is not None:
+            video.add(sim_.render())
+
+    if recorder is not None or video is not None:
+        sim.add_observer(observe)
+    logs = []
+    bar = tqdm(total=args.episodes, desc=f"{args.policy} on {args.wig}", unit="episode", disable=args.quiet)
+    try:
+        for ep in range(args.episodes):
+            if recorder is not None:
+                recorder.new_episode(ep, offset)
+
+            def on_step(log, step, info) -> None:
+                if recorder is not None:
+                    t_end = info["sim_time"]
+                    recorder.stroke(t_end, step.index, step.max_force, step.entanglement)
+                    recorder.image(t_end, env.render())
+                bar.set_postfix(
+                    stroke=step.index + 1, f_max=f"{step.max_force:.1f}N", E=f"{step.entanglement:.2f}"
+                )
+
+            log = run_episode(
+                env, policy, episode=ep, seed=args.seed + ep, policy_name=args.policy, on_step=on_step
+            )
+            offset += log.sim_time + 1.0
+            logs.append(log)
+            bar.update(1)
+    finally:
+        bar.close()
+        env.close()
+        if recorder is not None:
+            recorder.close()
+        if video is not None:
+            video.close()
+    episodes = [log.to_dict() for log in logs]
+    for ep in episodes:
+        print(
+            f"episode {ep['episode']}: {ep['strokes']} strokes, max force {ep['max_force']:.2f} N, "
+            f"pain violations {ep['pain_violations']}, entanglement {ep['entanglement_initial']:.2f} -> "
+            f"{ep['final_entanglement']:.2f}, time {ep['time']:.1f} s{' (DIVERGED)' if ep['diverged'] else ''}"
+        )
+    if args.json:
+        write_json(args.json, {"env": args.env, "wig": args.wig, "policy": args.policy, "episodes": episodes})
+    if args.plot:
+        plot_rollout(episodes, args.plot, force_threshold=env.unwrapped.force_threshold)
+    for label, path in (
+        ("recording", args.rerun),
+        ("video", args.video),
+        ("json", args.json),
+        ("plot", args.plot),
+    ):
+        if path:
+            print(f"wrote {label}: {path}")
+    return 0
+
+
+def _add_rollout(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "rollout", help="headless rollout of a policy on a brushing env (recording, video, plot)"
+    )
+    p.add_argument("--env", default="HairBrush-v0", choices=["HairBrush-v0", "HairBrushContinuous-v0"])
+    p.add_argument("--wig", default="curly", help="wig preset name (see hairbrush_env.hair.PRESETS)")
+    p.add_argument("--policy", default="full", help="registered policy name (e.g. full, random) or sb3:PATH")
+    p.add_argument("--episodes", type=int, default=1)
+    p.add_argument("--seed", type=int, default=0, help="episode k uses seed S + k")
+    p.add_argument("--obs-mode", default="state+image", choices=["state", "image", "state+image"])
+    p.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording")
+    p.add_argument("--video", metavar="OUT.mp4", help="write the webcam video (10 fps)")
+    p.add_argument("--width", type=int, default=320, help="webcam image width (observation, render, video)")
+    p.add_argument("--height", type=int, default=240, help="webcam image height")
+    p.add_argument("--json", metavar="OUT.json", help="write per-episode metrics and per-stroke traces")
+    p.add_argument("--plot", metavar="OUT.png", help="plot force vs time and max force per stroke")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=_cmd_rollout)
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    _add_rollout(sub)
