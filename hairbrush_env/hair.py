@@ -20,13 +20,23 @@ cross-group pair of rest curves is unlinked and at least ``2r + root_gap`` apart
 Wisp scaling (guide strands standing for a lock of hair)
 --------------------------------------------------------
 Real hair (``r_h ≈ 40 µm``, ``E_h ≈ 4 GPa``) is far too thin and stiff-per-mass for a millisecond step. A wisp
-of radius ``r_w`` stands for ``n = (r_w / r_h)²`` hairs (same mass per length with the keratin density); for
-the bending stiffness of ``n`` uncoupled hairs, ``n E_h r_h⁴ = E_w r_w⁴`` gives ``E_w = E_h (r_h / r_w)²``.
-The default ``r_w = 0.8 mm`` stands for 400 hairs with ``E_w = 4 GPa / 400 = 10 MPa`` (:func:`wisp_young`), so a
-24-wisp wig is a ~10 000-hair section of a head (the part under the brush). Wisps are discretized with
-:attr:`WigConfig.edges_per_turn` edges per curl turn (6 by default: enough for the link to equal the number of
-turns and for contact, not for < 5 % spring stiffness — see :mod:`hairbrush_env.rods`); the number of turns per
-wisp is therefore limited (a wisp turn stands for many real curl turns), which is the price of real time.
+of radius ``r_w`` stands for ``n = (r_w / r_h)²`` hairs (same mass per length with the keratin density). Its bending
+stiffness is ``B_w = κ · n · B_h`` (:func:`wisp_young`: ``E_w = κ E_h (r_h / r_w)²``), where the *cohesion* ``κ``
+runs from 1 (``n`` uncoupled hairs) to ``n`` (hairs bonded into one solid fibre). ``κ`` is the force-scale
+calibration (:data:`WISP_COHESION` = 50, ``E_w = 500 MPa`` at the default ``r_w = 0.8 mm`` = 400 hairs): chapter 2
+scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double helix (Figs 2.2–2.4), which for the
+~5000 real double helices under a brush gives ~10 N; a coarse wisp helix (``R/r ≈ 15``, one wisp turn standing for
+many real turns, few contacts per turn) jams far less than a real curl, and with ``κ = 1`` (10 MPa) the curliest full
+stroke read only 0.24 N. ``κ = 50`` was chosen from the measured force table (README "Wigs and scene",
+``scripts/benchmark_sim.py``): curliest full stroke > ``F_T`` = 10 N, straight < 1 N. Forces scale ≈ linearly with
+``κ`` (curly full stroke: 3.0 N at 100 MPa, 8.7 N at 400 MPa with the previous discretization).
+
+Discretization and speed: wisps get :attr:`WigConfig.edges_per_turn` = 5 edges per curl turn, capped at
+``max_edges`` = 16 per strand (≥ 4 per turn for every preset: enough for the link to equal the number of turns and for
+contact, not for < 5 % spring stiffness — see :mod:`hairbrush_env.rods`). With the scene's 10 ms step this keeps the
+24-strand default wig above 1× real time on one core. Hanging length is therefore ``≤ 4 P`` for curled presets: the
+curly presets use large curls (R = 12 mm) so that they hang 6–8 cm and a stroke from 2 cm below the scalp covers
+most of them (a wisp turn stands for many real curl turns; this is the price of real time).
 
 Pre-brushed state (thesis §3.4: wigs are turned upside down and shaken for 10–15 s)
 -----------------------------------------------------------------------------------
@@ -61,6 +71,7 @@ __all__ = [
     "DEFAULT_WIG",
     "HAIR_RGBA",
     "PRESETS",
+    "WISP_COHESION",
     "Entanglement",
     "StateCache",
     "WigConfig",
@@ -90,16 +101,30 @@ REAL_HAIR_YOUNG = 4e9
 # distance stayed ≥ 0.7 mm (> the 1.15 mm half-sum of radii in most samples; see the scene tests).
 CONTACT_SOLREF = (1e-3, 1.0)
 CONTACT_SOLIMP = (0.95, 0.99, 1e-4, 0.5, 2.0)
+CONTACT_MARGIN = 0.0
+
+
+WISP_COHESION = 50.0
+"""Force-scale calibration ``κ = B_w / (n B_h)`` of a wisp (module docstring, *Wisp scaling*).
+
+``κ = 1``: the ``n`` hairs of a wisp bend independently; ``κ = n``: they are bonded into one solid keratin fibre. 50
+(``E_w = 500 MPa`` at ``r_w = 0.8 mm``) puts a full stroke through the curliest preset above the thesis pain threshold
+and keeps straight hair below 1 N (measured table: README "Wigs and scene", ``scripts/benchmark_sim.py``)."""
 
 
 def wisp_young(
-    strand_radius: float, *, hair_radius: float = REAL_HAIR_RADIUS, hair_young: float = REAL_HAIR_YOUNG
+    strand_radius: float,
+    *,
+    cohesion: float = WISP_COHESION,
+    hair_radius: float = REAL_HAIR_RADIUS,
+    hair_young: float = REAL_HAIR_YOUNG,
 ):
-    """Young's modulus of a wisp of radius ``strand_radius`` that bends like ``(r_w/r_h)²`` uncoupled hairs.
+    """Young's modulus of a wisp of radius ``strand_radius`` standing for ``n = (r_w/r_h)²`` hairs.
 
-    Equal mass per length and equal total bending stiffness: ``E_w = E_h (r_h / r_w)²`` (module docstring).
+    ``E_w π r_w⁴/4 = κ · n · E_h π r_h⁴/4``, i.e. ``E_w = κ E_h (r_h / r_w)²`` with ``κ = cohesion``
+    (:data:`WISP_COHESION`; ``κ = 1`` = uncoupled hairs of equal mass per length and total bending stiffness).
     """
-    return hair_young * (hair_radius / strand_radius) ** 2
+    return cohesion * hair_young * (hair_radius / strand_radius) ** 2
 
 
 # ------------------------------------------------------------------------------------------------ config
@@ -175,9 +200,9 @@ class WigConfig:
     density: float = 1300.0
     damping: float = 0.02
     friction: float = 0.3
-    edges_per_turn: int = 6
+    edges_per_turn: int = 5
     min_edges: int = 12
-    max_edges: int = 24
+    max_edges: int = 16
     handedness: int = 1
     root_gap: float = 1.5e-3
     min_spacing: float = 6e-3
@@ -298,12 +323,12 @@ class WigConfig:
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
 # hanging (curl "shrinkage" = 1 − 1/√(1 + (2πR_C)²)) even where the pulled-straight length is similar.
 PRESETS: Mapping[str, WigConfig] = {
-    "straight": WigConfig(name="straight", curliness=0.0, length=0.30, min_edges=14),
-    "wavy": WigConfig(name="wavy", curliness=0.15, curl_radius=0.012, length=0.28),
-    "loose_curl": WigConfig(name="loose_curl", curliness=0.3, curl_radius=0.012, length=0.26),
-    "curly": WigConfig(name="curly", curliness=0.5, curl_radius=0.011, length=0.22),
-    "tight_curl": WigConfig(name="tight_curl", curliness=0.65, curl_radius=0.0095, length=0.20),
-    "coily": WigConfig(name="coily", curliness=0.8, curl_radius=0.008, length=0.18),
+    "straight": WigConfig(name="straight", curliness=0.0, length=0.31),
+    "wavy": WigConfig(name="wavy", curliness=0.15, curl_radius=0.014, length=0.28),
+    "loose_curl": WigConfig(name="loose_curl", curliness=0.3, curl_radius=0.013, length=0.26),
+    "curly": WigConfig(name="curly", curliness=0.5, curl_radius=0.012, length=0.25),
+    "tight_curl": WigConfig(name="tight_curl", curliness=0.65, curl_radius=0.012, length=0.27),
+    "coily": WigConfig(name="coily", curliness=0.8, curl_radius=0.012, length=0.30),
 }
 """Named wigs, ordered straightest → curliest (``R_C`` 0 → 0.8)."""
 
@@ -544,6 +569,7 @@ def add_wig(
                 condim=3,
                 contact_solref=CONTACT_SOLREF,
                 contact_solimp=CONTACT_SOLIMP,
+                margin=CONTACT_MARGIN,
             ),
             parent=parent_body,
         )

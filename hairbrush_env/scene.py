@@ -51,9 +51,10 @@ BRUSH_TCP = "arm/brush/brush_tcp"
 HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
 _BRISTLE_HALF = 0.0125  # half bristle length: TCP is at mid-bristle
 _BRISTLE_ROW = 0.008 + 0.0015  # outermost bristle row (±8 mm) + bristle radius
-_MOUNT_RADIUS = (
-    0.02  # load-cell disc radius: it passes under the scalp patch and limits the stroke start height
-)
+_HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
+# Gap between the head plate's top and the scalp underside [m]: the stroke starts 2 cm below the roots at most. Closer
+# starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
+_SCALP_CLEARANCE = 0.009
 _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 
 
@@ -66,7 +67,8 @@ class SceneConfig:
     wig : str or WigConfig
         Preset name (see :data:`hairbrush_env.hair.PRESETS`) or custom wig.
     timestep : float
-        Physics step [s] (5 ms: see ``scripts/benchmark_sim.py``; rods are step-independent in statics).
+        Physics step [s]. 10 ms: the ``discrete`` integrator is implicit and rods are step-independent in statics;
+        the default wig runs > 1× real time on one core only at this step (``scripts/benchmark_sim.py``).
     control_dt : float
         Period of the Cartesian tracking loop [s] (IK + servo set-points).
     width, height : int
@@ -90,7 +92,7 @@ class SceneConfig:
     """
 
     wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
-    timestep: float = 5e-3
+    timestep: float = 0.01
     control_dt: float = 0.01
     width: int = 320
     height: int = 240
@@ -345,7 +347,8 @@ class BrushingSim:
         self.hair_x_range = (float(self.root_origin[0] + lo[0]), float(self.root_origin[0] + hi[0]))
         self.depth_x = float(self.root_origin[0] + self.config.brush_depth)
         self.retract_x = self.hair_x_range[0] - 0.015 - _BRISTLE_HALF
-        self.top_z = float(self.root_origin[2]) - _MOUNT_RADIUS - 0.005
+        plate = self.model.geom(_HEAD_PLATE).id
+        self.top_z = float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - _SCALP_CLEARANCE
         self.park = np.array([self.retract_x, 0.0, self.config.free_end_z - 0.02])
 
         # Base state: hair at rest (rest shape = qpos0), arm holding the park pose.

@@ -14,6 +14,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from hairbrush_env import hair, rods, scene
+from hairbrush_env.topology._kernels import min_segment_distance
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -84,8 +85,10 @@ def section_wig_scaling(args: argparse.Namespace) -> None:
     """Real-time factor and steps/s of the full scene (arm + brush + head + wig) vs strand count and edges."""
     base = hair.PRESETS[hair.DEFAULT_WIG]
     counts = (8, 24) if args.quick else (8, 16, 24, 32, 48)
+    dt = scene.SceneConfig().timestep
     print(
-        f"\n## Scene speed vs strand count: wig '{base.name}' (R/P = {base.curliness}), dt = 5 ms, one thread\n"
+        f"\n## Scene speed vs strand count: wig '{base.name}' (R/P = {base.curliness}), "
+        f"dt = {1e3 * dt:g} ms, one thread\n"
     )
     print(
         "RTF and steps/s over a full stroke (approach, insertion, pull at 0.1 m/s, retraction) with hair-hair"
@@ -127,8 +130,11 @@ def section_wig_scaling(args: argparse.Namespace) -> None:
         )
     )
 
-    edges = (12, 24) if args.quick else (12, 18, 24, 30)
-    print(f"\n## Scene speed vs vertices per strand: {base.n_strands} strands of '{base.name}', dt = 5 ms\n")
+    edges = (12, 16) if args.quick else (8, 12, 16, 20, 24)
+    print(
+        f"\n## Scene speed vs vertices per strand: {base.n_strands} strands of '{base.name}', "
+        f"dt = {1e3 * dt:g} ms\n"
+    )
     rows = []
     for e in edges:
         wig = base.replace(min_edges=e, max_edges=e)
@@ -141,28 +147,66 @@ def section_wig_scaling(args: argparse.Namespace) -> None:
     print(_table(["vertices/strand", "nv", "RTF", "steps/s", "cold reset s", "diverged"], rows))
 
 
+def _bristle_segments(sim: scene.BrushingSim) -> list[np.ndarray]:
+    m, d = sim.model, sim.data
+    out = []
+    for g in range(m.ngeom):
+        if m.geom(g).name.startswith("arm/brush/tine_"):
+            ax = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g, 1]
+            out.append(np.array([d.geom_xpos[g] - ax, d.geom_xpos[g] + ax]))
+    return out
+
+
+class PassThroughMonitor:
+    """Load-cell observer (10 Hz): min hair–hair / hair–bristle centerline distance and max |ΔLk| per sample."""
+
+    def __init__(self, sim: scene.BrushingSim) -> None:
+        self.hh = self.hb = np.inf
+        self.jump = 0.0
+        self._lk = sim.pair_links()
+
+    def __call__(self, sim: scene.BrushingSim, sample: object) -> None:
+        curves = sim.hair_curves()
+        d = hair.min_distance_matrix(curves)
+        self.hh = min(self.hh, float(d[np.triu_indices(len(curves), 1)].min()))
+        self.hb = min(
+            self.hb, min(float(min_segment_distance(c, b)) for c in curves for b in _bristle_segments(sim))
+        )
+        lk = sim.pair_links()
+        self.jump = max(self.jump, float(np.abs(lk - self._lk).max()))
+        self._lk = lk
+
+
 def section_force_table(args: argparse.Namespace) -> None:
-    """Maximum brushing force vs curliness and normalized stroke length b_l (thesis Fig. 3.7)."""
+    """Maximum brushing force vs curliness and normalized stroke length b_l (thesis Fig. 3.7), with pass-through."""
     names = ["straight", "curly", "coily"] if args.quick else list(hair.PRESETS)
-    fractions = (0.5, 1.0) if args.quick else (0.33, 0.67, 1.0)
+    fractions = (0.33, 1.0) if args.quick else (0.33, 0.67, 1.0)
     print("\n## Max brushing force [N] vs curliness and b_l (seed 0, 0.1 m/s, no abort; thesis F_T = 10 N)\n")
+    print(
+        "Cells: F_max (Σ|Lk| before→after) [min hair–hair / hair–bristle centerline distance mm, max |ΔLk| per"
+    )
+    print("0.1 s]; no pass-through needs hair–hair > r = 0.8 mm, hair–bristle > 1.15 mm and |ΔLk| ≤ 0.5.\n")
     rows = []
     for name in names:
         wig = hair.PRESETS[name]
+        sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
         row = [name, f"{wig.curliness:.2f}", f"{wig.length:.2f}"]
         for b in fractions:
-            sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
             sim.reset(0)
             e0 = sim.entanglement()
+            mon = PassThroughMonitor(sim)
+            sim.add_observer(mon)
             res = sim.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
+            sim.remove_observer(mon)
             row.append(
-                f"{res.max_force:.2f} ({e0:.1f}→{sim.entanglement():.1f})" + (" DIV" if res.diverged else "")
+                f"{res.max_force:.2f} ({e0:.1f}→{sim.entanglement():.1f}) "
+                f"[{1e3 * mon.hh:.2f} / {1e3 * mon.hb:.2f}, {mon.jump:.2f}]"
+                + (" DIV" if res.diverged else "")
             )
-            sim.close()
+        row.insert(3, f"{sim.hanging_length:.3f}")
+        sim.close()
         rows.append(row)
-    print(
-        _table(["wig", "R/P", "length m"] + [f"b_l={b} F_max (Σ|Lk| before→after)" for b in fractions], rows)
-    )
+    print(_table(["wig", "R/P", "length m", "hanging m"] + [f"b_l={b}" for b in fractions], rows))
 
 
 SECTIONS: list[Callable[[argparse.Namespace], None]] = [

@@ -160,8 +160,9 @@ def _pull_and_check(sim: scene.BrushingSim, start_fraction: float) -> tuple[floa
 
 @pytest.mark.xfail(
     strict=True,
-    reason="known failure (issue #3): during a pull, trapped wisps are drawn through each other "
-    "(min hair-hair centerline distance 0.15 mm < r = 0.8 mm measured); contact tuning unfinished",
+    reason="known failure (issue #3): with the calibrated stiff wisps (500 MPa) the brush insertion and pull push "
+    "wisps through each other and through bristles (curly b_l=0.5: min centerline distances < 0.2 mm, |dLk| "
+    "jumps > 0.5 measured; no solref/solimp/margin/insertion-speed setting tried fixed it); contact model unfinished",
 )
 def test_no_pass_through_reduced(sim: scene.BrushingSim) -> None:
     """Half-length pull through the curly wig: strands never pass through each other or through bristles."""
@@ -173,6 +174,7 @@ def test_no_pass_through_reduced(sim: scene.BrushingSim) -> None:
     assert jump <= 0.5
 
 
+@pytest.mark.xfail(strict=True, reason="known failure (issue #3): see test_no_pass_through_reduced")
 @pytest.mark.slow
 def test_no_pass_through_full_stroke_curliest() -> None:
     s = scene.BrushingSim(scene.SceneConfig(wig=list(hair.PRESETS)[-1]))
@@ -192,19 +194,40 @@ def test_entanglement_decreases_after_strokes() -> None:
     assert s.entanglement() < e0 - 1.0
 
 
-def _max_force(wig: str, fraction: float) -> float:
-    s = scene.BrushingSim(scene.SceneConfig(wig=wig))
-    s.reset(0)
-    res = s.stroke(fraction, force_threshold=np.inf, rng=np.random.default_rng(0))
-    assert not res.diverged
-    return res.max_force
+def _force_table(names: list[str], fractions: tuple[float, ...]) -> dict[str, list[float]]:
+    """Max brushing force of one stroke per (wig, b_l) from the same seed-0 pre-brushed state (no abort)."""
+    table: dict[str, list[float]] = {}
+    for name in names:
+        s = scene.BrushingSim(scene.SceneConfig(wig=name))
+        row = []
+        for b in fractions:
+            s.reset(0)
+            res = s.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
+            assert not res.diverged, (name, b)
+            row.append(res.max_force)
+        table[name] = row
+        s.close()
+    print("\nmax force [N] vs b_l", fractions, {k: [round(f, 2) for f in v] for k, v in table.items()})
+    return table
+
+
+def test_force_table_reduced() -> None:
+    """Thesis Fig. 3.7 / §3.5 (reduced): the curliest full stroke exceeds F_T = 10 N, straight stays < 5 N, and
+    the curliest force grows with the stroke length b_l."""
+    names = list(hair.PRESETS)
+    t = _force_table([names[0], names[-1]], (0.33, 1.0))
+    assert t[names[-1]][1] > scene.PAIN_THRESHOLD
+    assert t[names[0]][1] < 5.0
+    assert t[names[-1]][0] < t[names[-1]][1]
+    assert t[names[0]][1] < t[names[-1]][1]
 
 
 @pytest.mark.slow
 def test_force_table_thesis_scale() -> None:
-    """Thesis Fig. 3.7 / §3.5: curliest full stroke > F_T = 10 N, straight a few N; force grows with b_l."""
+    """Full Fig. 3.7 table: force grows with b_l (0.33 < 0.67 < 1.0) for the curled presets from curly on, and
+    the full-stroke force of the curliest exceeds F_T while straight stays below 5 N."""
     names = list(hair.PRESETS)
-    straight, curliest = _max_force(names[0], 1.0), _max_force(names[-1], 1.0)
-    assert curliest > scene.PAIN_THRESHOLD
-    assert straight < 5.0
-    assert _max_force(names[-1], 0.3) < curliest
+    t = _force_table(names, (0.33, 0.67, 1.0))
+    assert t[names[-1]][2] > scene.PAIN_THRESHOLD and t[names[0]][2] < 5.0
+    for name in names[names.index("curly") :]:
+        assert t[name][0] < t[name][1] < t[name][2], (name, t[name])

@@ -24,6 +24,7 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
             render_mode="rgb_array",
             width=args.width,
             height=args.height,
+            **({"max_episode_steps": args.max_steps} if args.max_steps else {}),
         )
         policy = make_policy(args.policy, env)
     except ValueError as exc:
@@ -107,6 +108,9 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--policy", default="full", help="registered policy name (e.g. full, random) or sb3:PATH")
     p.add_argument("--episodes", type=int, default=1)
     p.add_argument("--seed", type=int, default=0, help="episode k uses seed S + k")
+    p.add_argument(
+        "--max-steps", type=int, default=None, help="cap on env steps per episode (default: registered)"
+    )
     p.add_argument("--obs-mode", default="state+image", choices=["state", "image", "state+image"])
     p.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording")
     p.add_argument("--video", metavar="OUT.mp4", help="write the webcam video (10 fps)")
