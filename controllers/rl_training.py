@@ -68,16 +68,17 @@ def train(cfg: TrainConfig, out: str | Path):
     from stable_baselines3.common.logger import configure
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
-    import hairbrush_env  # noqa: F401  (registers the envs)
-
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     env_kwargs: dict[str, Any] = {"wig": cfg.wig, "obs_mode": cfg.obs_mode}
     if cfg.max_episode_steps is not None:
         env_kwargs["max_episode_steps"] = int(cfg.max_episode_steps)  # consumed by gymnasium.make
     vec_cls = SubprocVecEnv if (cfg.vec_env == "subproc" and cfg.n_envs > 1) else DummyVecEnv
-    venv = make_vec_env(cfg.env, n_envs=cfg.n_envs, seed=cfg.seed, env_kwargs=env_kwargs, vec_env_cls=vec_cls)
-    eval_env = make_vec_env(cfg.env, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs)
+    # "module:EnvId" makes gymnasium import hairbrush_env (which registers the envs) inside each worker process;
+    # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
+    env_id = f"hairbrush_env:{cfg.env}"
+    venv = make_vec_env(env_id, n_envs=cfg.n_envs, seed=cfg.seed, env_kwargs=env_kwargs, vec_env_cls=vec_cls)
+    eval_env = make_vec_env(env_id, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs)
     try:
         model = _make_algo(cfg, venv, out)
         model.set_logger(configure(str(out), ["csv"] + (["tensorboard"] if cfg.tensorboard else [])))

@@ -53,3 +53,21 @@ def test_train_config_validation():
         TrainConfig(algo="dqn")
     with pytest.raises(ValueError, match="n_envs"):
         TrainConfig(n_envs=0)
+
+
+def test_subprocess_workers_find_the_envs(tmp_path):
+    """SB3 starts SubprocVecEnv workers with forkserver: they must register the envs themselves."""
+    wig = get_wig("curly").replace(name="test_rl_tiny", n_strands=4, n_triples=0, length=0.12)
+    cfg = TrainConfig(
+        env="HairBrushContinuous-v0",
+        total_timesteps=32,
+        n_envs=2,
+        vec_env="subproc",
+        wig=wig,
+        max_episode_steps=8,
+        eval_freq=10_000,
+        checkpoint_freq=10_000,
+        progress_bar=False,
+    )
+    train(cfg, tmp_path)
+    assert (tmp_path / "model.zip").exists()
