@@ -78,7 +78,10 @@ def train(cfg: TrainConfig, out: str | Path):
     # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
     env_id = f"hairbrush_env:{cfg.env}"
     venv = make_vec_env(env_id, n_envs=cfg.n_envs, seed=cfg.seed, env_kwargs=env_kwargs, vec_env_cls=vec_cls)
-    eval_env = make_vec_env(env_id, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs)
+    # same VecEnv type as training (SB3 warns otherwise)
+    eval_env = make_vec_env(
+        env_id, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs, vec_env_cls=vec_cls
+    )
     try:
         model = _make_algo(cfg, venv, out)
         model.set_logger(configure(str(out), ["csv"] + (["tensorboard"] if cfg.tensorboard else [])))
