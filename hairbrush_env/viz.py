@@ -96,9 +96,18 @@ class EpisodeRecorder:
         self._rec.set_time("t", duration=self._offset + float(t))
 
     def frame(
-        self, t: float, strands: Sequence[np.ndarray], groups: Sequence[int], brush: np.ndarray
+        self,
+        t: float,
+        strands: Sequence[np.ndarray],
+        groups: Sequence[int],
+        brush: np.ndarray,
+        brush_rotation: np.ndarray | None = None,
     ) -> None:
-        """Log the strands (coloured by their entwined group) and the brush position at sim time ``t``."""
+        """Log the strands (coloured by their entwined group) and the brush pose at sim time ``t``.
+
+        The brush is drawn as its bristle block (25 × 48 × 20 mm) centred on the TCP, rotated by
+        ``brush_rotation`` (3×3 world rotation of the TCP frame) if given.
+        """
         rr = self._rr
         self._at(t)
         colors = [rgb(PALETTE[g % len(PALETTE)]) for g in groups]
@@ -106,8 +115,19 @@ class EpisodeRecorder:
             "scene/hair",
             rr.LineStrips3D([np.asarray(s, np.float32) for s in strands], colors=colors, radii=0.0008),
         )
+        quat = None
+        if brush_rotation is not None:
+            from scipy.spatial.transform import Rotation
+
+            quat = [rr.Quaternion(xyzw=Rotation.from_matrix(np.asarray(brush_rotation)).as_quat())]
         self._rec.log(
-            "scene/brush", rr.Points3D([np.asarray(brush, np.float32)], radii=0.01, colors=[(40, 40, 40)])
+            "scene/brush",
+            rr.Boxes3D(
+                centers=[np.asarray(brush, np.float32)],
+                half_sizes=[(0.0125, 0.024, 0.010)],
+                quaternions=quat,
+                colors=[(40, 40, 40)],
+            ),
         )
 
     def force(self, t: float, value: float) -> None:
