@@ -37,6 +37,7 @@ from .sensors import LoadCell, LoadCellConfig
 __all__ = [
     "BRUSH_TCP",
     "PAIN_THRESHOLD",
+    "TOOL_CONTACT_MARGIN",
     "BrushingSim",
     "SceneConfig",
     "StrokeResult",
@@ -56,6 +57,10 @@ _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half h
 # starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
 _SCALP_CLEARANCE = 0.009
 _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
+TOOL_CONTACT_MARGIN = 1e-3
+"""Contact margin [m] of the bristles and head plate: a wisp wrapped round a bristle near the clamp carries ~10 N on
+one contact and sinks ~2 mm into it (1 ms step); with the margin the contact pushes back from 1 mm outside the
+surface, so the hair–bristle centerline distance stays above half the sum of radii (1.15 mm; issue #3)."""
 
 
 @dataclass(frozen=True)
@@ -67,8 +72,16 @@ class SceneConfig:
     wig : str or WigConfig
         Preset name (see :data:`hairbrush_env.hair.PRESETS`) or custom wig.
     timestep : float
-        Physics step [s]. 10 ms: the ``discrete`` integrator is implicit and rods are step-independent in statics;
-        the default wig runs > 1× real time on one core only at this step (``scripts/benchmark_sim.py``).
+        Physics step [s] outside the hair (shake, settling, free-space moves). 10 ms: the ``discrete`` integrator is
+        implicit and rods are step-independent in statics. Contact with the brush uses ``contact_timestep``.
+    contact_timestep : float
+        Physics step [s] while the brush is in the hair (TCP in front of the retract plane: insertion, pull,
+        velocity control). Issue #3 (measured, curly ``b_l = 0.5``): at 10 ms the brush squeezed the stiff wisps 1–2 mm
+        into each other and into the bristles (min centerline distance < 0.01 mm, ``|ΔLk|`` jumps of 2; the
+        contacts held forces of only ~0.1 N at that depth); 5 ms: 0.05 / 0.3 mm; 2.5 ms: distances met but
+        ``|ΔLk|`` 1.0; 1 ms: 1.4 mm hair–hair, 1.9 mm hair–bristle, ``|ΔLk|`` ≤ 0.27. Shake, settling and
+        free-space moves keep ``timestep`` (the cached pre-brushed states do not depend on this setting), so
+        ``model.opt.timestep`` changes at run time.
     control_dt : float
         Period of the Cartesian tracking loop [s] (IK + servo set-points).
     width, height : int
@@ -93,6 +106,7 @@ class SceneConfig:
 
     wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
     timestep: float = 0.01
+    contact_timestep: float = 0.001
     control_dt: float = 0.01
     width: int = 320
     height: int = 240
@@ -113,6 +127,7 @@ class SceneConfig:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
         for name in (
             "timestep",
+            "contact_timestep",
             "control_dt",
             "camera_distance",
             "stroke_speed",
@@ -124,6 +139,10 @@ class SceneConfig:
                 raise ValueError(f"SceneConfig.{name} must be a finite number > 0, got {v!r}")
         if self.control_dt < self.timestep:
             raise ValueError(f"SceneConfig.control_dt must be >= timestep, got {self.control_dt!r}")
+        if self.contact_timestep > self.timestep:
+            raise ValueError(
+                f"SceneConfig.contact_timestep must be <= timestep, got {self.contact_timestep!r}"
+            )
         for name in ("width", "height"):
             v = getattr(self, name)
             if not (isinstance(v, int) and 16 <= v <= 4096):
@@ -179,6 +198,7 @@ def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
         if geom.name.startswith("arm/brush/tine_") or geom.name == "arm/brush/head_plate":
             geom.solref = list(hairmod.CONTACT_SOLREF)
             geom.solimp = list(hairmod.CONTACT_SOLIMP)
+            geom.margin = TOOL_CONTACT_MARGIN
 
     head = load_part("head")
     scalp_local = np.asarray(head.body("scalp").pos) + np.asarray(head.site("scalp").pos)
@@ -321,6 +341,8 @@ class BrushingSim:
         self.entanglement_meter = hairmod.Entanglement(self.model, self.layout)
         self._tcp_site = self.controller.site_id
         self._n_sub = max(1, round(self.config.control_dt / self.config.timestep))
+        self._n_sub_contact = max(1, round(self.config.control_dt / self.config.contact_timestep))
+        self._dt_contact = self.config.control_dt / self._n_sub_contact
         bodies = [
             self.model.body(f"{name}_{k}").id
             for name, c in zip(self.layout.names, self.layout.curves, strict=True)
@@ -340,6 +362,7 @@ class BrushingSim:
         )
         self._renderer: mujoco.Renderer | None = None
         self._observers: list = []
+        self.n_steps = 0  # physics steps taken by strokes and velocity control (for benchmarks)
         self.diverged = False
 
         # Wig geometry in the world: x range of the curtain (for the retracted brush) and the stroke depth.
@@ -395,6 +418,7 @@ class BrushingSim:
         """The pre-brushed state for ``seed`` (from the cache, or shaken now and cached)."""
         state = self.cache.get(self.wig, seed, self.model_hash)
         if state is None:
+            self.model.opt.timestep = self.config.timestep
             hairmod.set_state(self.model, self.data, self._base_state)
             hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
             state = hairmod.get_state(self.model, self.data)
@@ -404,6 +428,7 @@ class BrushingSim:
     def reset(self, seed: int = 0) -> None:
         """Restore the cached pre-brushed wig for ``seed`` with the brush parked beside the hair (time = 0)."""
         state = self.settled_state(seed)
+        self.model.opt.timestep = self.config.timestep
         hairmod.set_state(self.model, self.data, state)
         self.data.time = 0.0
         self._q = self.controller.arm_qpos(self.data)
@@ -443,7 +468,12 @@ class BrushingSim:
         if self.diverged:
             return False
         self._q = self.controller.track(self.data, target, vel, q_init=self._q)
-        for _ in range(self._n_sub):
+        # Fine physics step while the brush is (or is about to be) in the hair (SceneConfig.contact_timestep).
+        in_hair = max(float(target[0]), float(self.data.site_xpos[self._tcp_site, 0])) > self.retract_x + 1e-3
+        n_sub = self._n_sub_contact if in_hair else self._n_sub
+        self.model.opt.timestep = self._dt_contact if in_hair else self.config.timestep
+        self.n_steps += n_sub
+        for _ in range(n_sub):
             mujoco.mj_step(self.model, self.data)
             s = self.load_cell.update(self.data)
             if s is not None:
