@@ -39,6 +39,7 @@ __all__ = [
     "PAIN_THRESHOLD",
     "TOOL_CONTACT_MARGIN",
     "BrushingSim",
+    "PassThroughMonitor",
     "SceneConfig",
     "StrokeResult",
     "VelocityStep",
@@ -57,6 +58,7 @@ _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half h
 # starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
 _SCALP_CLEARANCE = 0.009
 _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
+_TINE_PREFIX = "arm/brush/tine_"
 TOOL_CONTACT_MARGIN = 1e-3
 """Contact margin [m] of the bristles and head plate: a wisp wrapped round a bristle near the clamp carries ~10 N on
 one contact and sinks ~2 mm into it (1 ms step); with the margin the contact pushes back from 1 mm outside the
@@ -195,7 +197,7 @@ def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
     # width and 20 ms time constant a strand sinks into — and is pulled through — a 1.5 mm bristle). Contact
     # parameters of a geom–flex pair are mixed, so both sides must be stiff.
     for geom in spec.geoms:
-        if geom.name.startswith("arm/brush/tine_") or geom.name == "arm/brush/head_plate":
+        if geom.name.startswith(_TINE_PREFIX) or geom.name == "arm/brush/head_plate":
             geom.solref = list(hairmod.CONTACT_SOLREF)
             geom.solimp = list(hairmod.CONTACT_SOLIMP)
             geom.margin = TOOL_CONTACT_MARGIN
@@ -363,6 +365,9 @@ class BrushingSim:
         self._renderer: mujoco.Renderer | None = None
         self._observers: list = []
         self.n_steps = 0  # physics steps taken by strokes and velocity control (for benchmarks)
+        self._bristle_geoms = [
+            g for g in range(self.model.ngeom) if self.model.geom(g).name.startswith(_TINE_PREFIX)
+        ]
         self.diverged = False
 
         # Wig geometry in the world: x range of the curtain (for the retracted brush) and the stroke depth.
@@ -412,6 +417,15 @@ class BrushingSim:
     def hair_curves(self) -> list[np.ndarray]:
         """Current centerlines of all strands (world)."""
         return self.entanglement_meter.curves(self.data)
+
+    def bristle_segments(self) -> list[np.ndarray]:
+        """Current axis segments ``(2, 3)`` of the brush's bristle capsules (world)."""
+        m, d = self.model, self.data
+        out = []
+        for g in self._bristle_geoms:
+            half_axis = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g, 1]
+            out.append(np.array([d.geom_xpos[g] - half_axis, d.geom_xpos[g] + half_axis]))
+        return out
 
     # --------------------------------------------------------------------------------------- reset
     def settled_state(self, seed: int) -> np.ndarray:
@@ -631,3 +645,34 @@ class BrushingSim:
     def replace_config(self, **changes: object) -> SceneConfig:
         """Convenience: a copy of this sim's config with ``changes`` (build a new sim from it)."""
         return dataclasses.replace(self.config, **changes)
+
+
+class PassThroughMonitor:
+    """Watches for strands passing through each other or through bristles (issue #3's "must not happen").
+
+    Call :meth:`update` once per control step (or register the instance with :meth:`BrushingSim.add_observer` to
+    check at every 10 Hz load-cell sample); it keeps the minimum hair–hair and hair–bristle centerline distances and
+    the largest change of any entwined pair's link between two checks.
+    """
+
+    def __init__(self, sim: BrushingSim) -> None:
+        self.hair_hair = self.hair_bristle = math.inf
+        self.max_link_jump = 0.0
+        self._lk = sim.pair_links()
+
+    def update(self, sim: BrushingSim) -> None:
+        from .topology._kernels import min_segment_distance
+
+        curves = sim.hair_curves()
+        d = hairmod.min_distance_matrix(curves)
+        self.hair_hair = min(self.hair_hair, float(d[np.triu_indices(len(curves), 1)].min()))
+        bristles = sim.bristle_segments()
+        self.hair_bristle = min(
+            self.hair_bristle, min(float(min_segment_distance(c, b)) for c in curves for b in bristles)
+        )
+        lk = sim.pair_links()
+        self.max_link_jump = max(self.max_link_jump, float(np.abs(lk - self._lk).max()))
+        self._lk = lk
+
+    def __call__(self, sim: BrushingSim, sample: object) -> None:
+        self.update(sim)

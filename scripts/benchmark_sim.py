@@ -14,7 +14,6 @@ from collections.abc import Callable, Sequence
 import numpy as np
 
 from hairbrush_env import hair, rods, scene
-from hairbrush_env.topology._kernels import min_segment_distance
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -150,36 +149,6 @@ def section_wig_scaling(args: argparse.Namespace) -> None:
     print(_table(["vertices/strand", "nv", "RTF", "steps/s", "cold reset s", "diverged"], rows))
 
 
-def _bristle_segments(sim: scene.BrushingSim) -> list[np.ndarray]:
-    m, d = sim.model, sim.data
-    out = []
-    for g in range(m.ngeom):
-        if m.geom(g).name.startswith("arm/brush/tine_"):
-            ax = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g, 1]
-            out.append(np.array([d.geom_xpos[g] - ax, d.geom_xpos[g] + ax]))
-    return out
-
-
-class PassThroughMonitor:
-    """Load-cell observer (10 Hz): min hair–hair / hair–bristle centerline distance and max |ΔLk| per sample."""
-
-    def __init__(self, sim: scene.BrushingSim) -> None:
-        self.hh = self.hb = np.inf
-        self.jump = 0.0
-        self._lk = sim.pair_links()
-
-    def __call__(self, sim: scene.BrushingSim, sample: object) -> None:
-        curves = sim.hair_curves()
-        d = hair.min_distance_matrix(curves)
-        self.hh = min(self.hh, float(d[np.triu_indices(len(curves), 1)].min()))
-        self.hb = min(
-            self.hb, min(float(min_segment_distance(c, b)) for c in curves for b in _bristle_segments(sim))
-        )
-        lk = sim.pair_links()
-        self.jump = max(self.jump, float(np.abs(lk - self._lk).max()))
-        self._lk = lk
-
-
 def section_force_table(args: argparse.Namespace) -> None:
     """Maximum brushing force vs curliness and normalized stroke length b_l (thesis Fig. 3.7), with pass-through."""
     names = ["straight", "curly", "coily"] if args.quick else list(hair.PRESETS)
@@ -197,13 +166,13 @@ def section_force_table(args: argparse.Namespace) -> None:
         for b in fractions:
             sim.reset(0)
             e0 = sim.entanglement()
-            mon = PassThroughMonitor(sim)
+            mon = scene.PassThroughMonitor(sim)
             sim.add_observer(mon)
             res = sim.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
             sim.remove_observer(mon)
             row.append(
                 f"{res.max_force:.2f} ({e0:.1f}→{sim.entanglement():.1f}) "
-                f"[{1e3 * mon.hh:.2f} / {1e3 * mon.hb:.2f}, {mon.jump:.2f}]"
+                f"[{1e3 * mon.hair_hair:.2f} / {1e3 * mon.hair_bristle:.2f}, {mon.max_link_jump:.2f}]"
                 + (" DIV" if res.diverged else "")
             )
         row.insert(3, f"{sim.hanging_length:.3f}")

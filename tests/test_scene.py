@@ -16,7 +16,6 @@ import numpy as np
 import pytest
 
 from hairbrush_env import hair, scene
-from hairbrush_env.topology._kernels import min_segment_distance
 
 BRISTLE_RADIUS = 0.0015
 
@@ -27,16 +26,6 @@ def sim() -> scene.BrushingSim:
     s.reset(0)
     yield s
     s.close()
-
-
-def _bristle_segments(sim: scene.BrushingSim) -> list[np.ndarray]:
-    m, d = sim.model, sim.data
-    out = []
-    for g in range(m.ngeom):
-        if m.geom(g).name.startswith("arm/brush/tine_"):
-            ax = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g, 1]
-            out.append(np.array([d.geom_xpos[g] - ax, d.geom_xpos[g] + ax]))
-    return out
 
 
 @pytest.mark.parametrize(
@@ -144,19 +133,12 @@ def _pull_and_check(sim: scene.BrushingSim, start_fraction: float) -> tuple[floa
     z0 = min(sim.hair_bottom + start_fraction * sim.hanging_length, sim.top_z)
     sim._move(np.array([sim.retract_x, 0.0, z0]), 0.15)
     sim._move(np.array([sim.depth_x, 0.0, z0]), 0.15)
-    lk_prev = sim.pair_links()
-    dhh, dhb, jump = np.inf, np.inf, 0.0
+    mon = scene.PassThroughMonitor(sim)
     while sim.brush_position()[2] > sim.hair_bottom - 0.02 and not sim.diverged:
         sim.step_velocity(-0.1, 0.0, 0.1)
-        curves = sim.hair_curves()
-        d = hair.min_distance_matrix(curves)
-        dhh = min(dhh, d[np.triu_indices(len(curves), 1)].min())
-        dhb = min(dhb, min(min_segment_distance(c, b) for c in curves for b in _bristle_segments(sim)))
-        lk = sim.pair_links()
-        jump = max(jump, float(np.abs(lk - lk_prev).max()))
-        lk_prev = lk
+        mon.update(sim)
     assert not sim.diverged
-    return dhh, dhb, jump
+    return mon.hair_hair, mon.hair_bristle, mon.max_link_jump
 
 
 def test_no_pass_through_reduced(sim: scene.BrushingSim) -> None:
