@@ -11,6 +11,7 @@ import argparse
 import time
 from collections.abc import Callable, Sequence
 
+import mujoco
 import numpy as np
 
 from hairbrush_env import hair, rods, scene
@@ -181,10 +182,166 @@ def section_force_table(args: argparse.Namespace) -> None:
     print(_table(["wig", "R/P", "length m", "hanging m"] + [f"b_l={b}" for b in fractions], rows))
 
 
+def _step_cost(sim: scene.BrushingSim, dt: float, n: int) -> tuple[float, float, dict[str, float]]:
+    """CPU ms per ``mj_step`` of the sim's current state at step ``dt``, mean Newton iterations, timer shares."""
+    m, d = sim.model, sim.data
+    m.opt.timestep = dt
+    for _ in range(10):
+        mujoco.mj_step(m, d)
+    for t in d.timer:
+        t.duration, t.number = 0.0, 0
+    iters = 0
+    t0 = time.process_time()
+    for _ in range(n):
+        mujoco.mj_step(m, d)
+        iters += int(d.solver_niter[0])
+    cpu = (time.process_time() - t0) / n
+    stage = {
+        name: d.timer[int(getattr(mujoco.mjtTimer, f"mjTIMER_{name.upper()}"))].duration
+        for name in ("constraint", "position", "velocity", "pos_collision")
+    }
+    total = d.timer[int(mujoco.mjtTimer.mjTIMER_STEP)].duration
+    return 1e3 * cpu, iters / n, {k: v / total for k, v in stage.items()}
+
+
+def section_step_cost(args: argparse.Namespace) -> None:
+    """Where the time goes: CPU cost of one physics step of the default wig, and pass-through vs contact step."""
+    base = hair.PRESETS[hair.DEFAULT_WIG]
+    print(
+        f"\n## Step cost of the default scene ('{base.name}', {base.n_strands} strands), hair at rest, "
+        "no contacts (CPU time, one thread)\n"
+    )
+    sim = scene.BrushingSim(scene.SceneConfig(wig=base))
+    sim.reset(0)
+    rows = []
+    for dt in (0.01, 0.001):
+        ms, it, share = _step_cost(sim, dt, 100 if args.quick else 300)
+        rows.append(
+            [
+                f"{1e3 * dt:g}",
+                str(sim.model.nv),
+                str(sim.data.nefc),
+                f"{it:.2f}",
+                f"{ms:.2f}",
+                f"{dt / (1e-3 * ms):.2f}",
+                " / ".join(
+                    f"{100 * share[k]:.0f}" for k in ("constraint", "position", "velocity", "pos_collision")
+                ),
+            ]
+        )
+    sim.close()
+    # The same rods without arm, brush and head: the floor set by MuJoCo's discrete elastic rods themselves.
+    wig_specs = [
+        rods.RodSpec(
+            name=f"r{i}",
+            points=np.stack([np.full(base.n_edges + 1, 0.005 * i), np.zeros(base.n_edges + 1),
+                             np.linspace(0.0, -base.length, base.n_edges + 1)], axis=1),
+            radius=base.strand_radius,
+            young=hair.wisp_young(base.strand_radius),
+            clamp="start",
+        )
+        for i in range(base.n_strands)
+    ]  # fmt: skip
+    bare = rods.build_rod_model(wig_specs, timestep=0.001)
+    bare_data = mujoco.MjData(bare)
+    for _ in range(10):
+        mujoco.mj_step(bare, bare_data)
+    t0 = time.process_time()
+    n_bare = 100 if args.quick else 300
+    for _ in range(n_bare):
+        mujoco.mj_step(bare, bare_data)
+    bare_ms = 1e3 * (time.process_time() - t0) / n_bare
+    rows.append(["1 (rods only)", str(bare.nv), str(bare_data.nefc), f"{bare_data.solver_niter[0]}",
+                 f"{bare_ms:.2f}", f"{1.0 / bare_ms:.2f}", "—"])  # fmt: skip
+    print(
+        _table(
+            [
+                "dt ms",
+                "nv",
+                "constraint rows",
+                "Newton iters",
+                "CPU ms/step",
+                "RTF ceiling",
+                "% constraint / position / velocity / collision",
+            ],
+            rows,
+        )
+    )
+
+    print("\n## Solver options on a full `curly` stroke at the 1 ms contact step (RTF on CPU time)\n")
+    rows = []
+    for label, tol, sleep in (("defaults (tolerance 1e-8)", None, False), ("tolerance 1e-6", 1e-6, False),
+                              ("sleeping islands", None, True)):  # fmt: skip
+        sim = scene.BrushingSim(scene.SceneConfig(wig=base))
+        if tol is not None:
+            sim.model.opt.tolerance = tol
+        if sleep:  # the flag acts at data initialization
+            sim.model.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_SLEEP)
+            mujoco.mj_resetData(sim.model, sim.data)
+        sim.reset(0)
+        stats = []
+        sim.add_observer(lambda s, _, stats=stats: stats.append((int((s.data.tree_asleep >= 0).sum()), s.data.nefc)))
+        t0 = time.process_time()
+        res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(0))
+        cpu = time.process_time() - t0
+        st = np.array(stats)
+        rows.append([label, f"{res.sim_time / cpu:.3f}", f"{res.max_force:.2f}", f"{st[:, 0].mean():.0f}",
+                     f"{st[:, 1].mean():.0f}"])  # fmt: skip
+        sim.close()
+    print(_table(["options", "RTF (CPU)", "F_max N", "trees asleep (mean)", "constraint rows (mean)"], rows))
+
+    names = ["curly"] if args.quick else ["curly", "coily"]
+    steps = (0.001, 0.005) if args.quick else (0.001, 0.0025, 0.005, 0.01)
+    print(
+        "\n## Pass-through and speed vs contact step (full stroke, b_l = 1, seed 0; RTF on CPU time; "
+        "no pass-through needs hair–hair > 0.8 mm, hair–bristle > 1.15 mm, |ΔLk| ≤ 0.5)\n"
+    )
+    rows = []
+    for name in names:
+        for dt in steps:
+            sim = scene.BrushingSim(scene.SceneConfig(wig=hair.PRESETS[name], contact_timestep=dt))
+            sim.reset(0)
+            mon = scene.PassThroughMonitor(sim)
+            sim.add_observer(mon)
+            t0 = time.process_time()
+            res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(0))
+            cpu = time.process_time() - t0
+            ok = mon.hair_hair > 8e-4 and mon.hair_bristle > 1.15e-3 and mon.max_link_jump <= 0.5
+            rows.append(
+                [
+                    name,
+                    f"{1e3 * dt:g}",
+                    f"{res.sim_time / cpu:.2f}",
+                    f"{res.max_force:.2f}",
+                    f"{1e3 * mon.hair_hair:.2f}",
+                    f"{1e3 * mon.hair_bristle:.2f}",
+                    f"{mon.max_link_jump:.2f}",
+                    "yes" if ok else "NO",
+                ]
+            )
+            sim.close()
+    print(
+        _table(
+            [
+                "wig",
+                "contact dt ms",
+                "RTF (CPU)",
+                "F_max N",
+                "hair–hair mm",
+                "hair–bristle mm",
+                "max |ΔLk|",
+                "no pass-through",
+            ],
+            rows,
+        )
+    )
+
+
 SECTIONS: list[Callable[[argparse.Namespace], None]] = [
     section_rod_convergence,
     section_wig_scaling,
     section_force_table,
+    section_step_cost,
 ]
 
 
@@ -192,9 +349,16 @@ def main(argv: Sequence[str] | None = None) -> None:
     """Parse arguments and run every section in :data:`SECTIONS`."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer / coarser cases (CI smoke run)")
+    parser.add_argument(
+        "--section",
+        action="append",
+        choices=[f.__name__.removeprefix("section_") for f in SECTIONS],
+        help="run only this section (repeatable); default: all",
+    )
     args = parser.parse_args(argv)
     for section in SECTIONS:
-        section(args)
+        if args.section is None or section.__name__.removeprefix("section_") in args.section:
+            section(args)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""Policy × wig comparison grids: ``hairbrush compare``."""
+"""Policy × wig comparison grids and single-stroke force studies: ``hairbrush compare``, ``hairbrush strokes``."""
 
 from __future__ import annotations
 
@@ -41,5 +41,55 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_compare)
 
 
+def _floats(text: str) -> list[float]:
+    try:
+        return [float(v) for v in text.split(",") if v.strip()]
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from exc
+
+
+def _cmd_strokes(args: argparse.Namespace) -> int:
+    from ..stroke_study import measure_strokes, summary_markdown
+
+    if args.wigs == "all":
+        from ..hair import PRESETS
+
+        wigs = list(PRESETS)
+    else:
+        wigs = [w.strip() for w in args.wigs.split(",") if w.strip()]
+    try:
+        rows = measure_strokes(
+            wigs,
+            brush_lengths=args.brush_lengths,
+            speeds=args.speeds,
+            seeds=range(args.seed, args.seed + args.seeds),
+            out=args.out,
+            progress=not args.quiet,
+        )
+    except ValueError as exc:
+        raise SystemExit(f"hairbrush strokes: {exc}") from exc
+    print(summary_markdown(rows))
+    print(f"wrote {args.out}/strokes.csv, summary.md, force_vs_brush_length.png, force_vs_speed.png")
+    return 0
+
+
+def _add_strokes(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "strokes",
+        help="max force of single strokes vs curliness, brush length and speed (thesis Figs 3.7, 3.8)",
+    )
+    p.add_argument("--wigs", default="straight,curly,coily", help="comma-separated preset names, or 'all'")
+    p.add_argument(
+        "--brush-lengths", type=_floats, default=[1.0], help="normalized start heights b_l, e.g. 0.33,0.67,1"
+    )
+    p.add_argument("--speeds", type=_floats, default=[0.1], help="pull speeds [m/s], e.g. 0.05,0.1,0.2")
+    p.add_argument("--seeds", type=int, default=3, help="repetitions (pre-brushed wigs S, S+1, ...)")
+    p.add_argument("--seed", type=int, default=0, help="first seed S")
+    p.add_argument("--out", default="runs/strokes", help="output directory (resumes an interrupted run)")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=_cmd_strokes)
+
+
 def register(sub: argparse._SubParsersAction) -> None:
     _add_compare(sub)
+    _add_strokes(sub)

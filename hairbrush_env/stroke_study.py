@@ -1,0 +1,224 @@
+"""Single-stroke force measurements: max force vs curliness, brush length and speed (thesis Figs 3.7, 3.8).
+
+The thesis measured the maximum brushing force of one downward stroke while varying the normalized brush length
+``b_l`` on wigs of different curliness (Fig. 3.7) and the brushing speed at a fixed length (Fig. 3.8; "the wigs are
+reset between each test"). :func:`measure_strokes` does the same on :class:`~hairbrush_env.scene.BrushingSim`: every
+cell ``(wig, b_l, speed, seed)`` restores the pre-brushed wig of that seed, makes one stroke without the pain abort
+(``F_T = ∞``, so the whole force profile is seen) and records its maximum load-cell force. Seeds are the
+repetitions: they give different pre-brushed wigs and load-cell noise, and the mean ± std over them is what the
+thesis plots.
+
+Rows are written to ``out/strokes.csv`` after every cell (atomically), so an interrupted run keeps its rows and a
+rerun skips them.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .io import write_text
+
+COLUMNS = ["wig", "curliness", "brush_length", "speed", "seed", "max_force", "sim_time", "diverged"]
+
+
+def _to_csv(rows: Sequence[dict[str, Any]]) -> str:
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=COLUMNS, extrasaction="ignore", lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return buf.getvalue()
+
+
+def read_strokes(path: str | Path) -> list[dict[str, Any]]:
+    """Rows of a ``strokes.csv`` with numeric columns converted."""
+    rows = []
+    with open(path, newline="") as fh:
+        for row in csv.DictReader(fh):
+            for key in ("curliness", "brush_length", "speed", "max_force", "sim_time"):
+                row[key] = float(row[key])
+            row["seed"] = int(row["seed"])
+            row["diverged"] = row["diverged"] == "True"
+            rows.append(row)
+    return rows
+
+
+def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[float]:
+    vals = [float(v) for v in values]
+    if not vals:
+        raise ValueError(f"{name}: need at least one value")
+    for v in vals:
+        if not (math.isfinite(v) and lo <= v <= hi):
+            raise ValueError(f"{name}: values must be in [{lo}, {hi}], got {v!r}")
+    return vals
+
+
+def measure_strokes(
+    wigs: Sequence[str],
+    *,
+    brush_lengths: Sequence[float] = (1.0,),
+    speeds: Sequence[float] = (0.1,),
+    seeds: Sequence[int] = (0,),
+    out: str | Path | None = None,
+    progress: bool = True,
+) -> list[dict[str, Any]]:
+    """Max force of one stroke for every ``(wig, brush_length, speed, seed)``.
+
+    Parameters
+    ----------
+    wigs : sequence of str
+        Preset names (:data:`hairbrush_env.hair.PRESETS`).
+    brush_lengths : sequence of float
+        Normalized start heights ``b_l ∈ (0, 1]`` (fraction of the hanging length above the free ends).
+    speeds : sequence of float
+        Pull speeds [m/s], in ``(0, 0.5]`` (the arm's tracking limit).
+    seeds : sequence of int
+        Pre-brushed wig / noise seeds (the repetitions).
+    out : path, optional
+        Directory for ``strokes.csv`` (resumed if present), ``summary.md`` and ``force_vs_*.png``.
+    progress : bool
+        Show a progress bar.
+
+    Returns
+    -------
+    list of dict
+        One row per stroke, columns :data:`COLUMNS`.
+    """
+    from tqdm import tqdm
+
+    from . import hair
+    from .scene import BrushingSim, SceneConfig
+
+    unknown = [w for w in wigs if w not in hair.PRESETS]
+    if unknown or not wigs:
+        raise ValueError(f"wigs: unknown preset(s) {unknown!r}; choose from {list(hair.PRESETS)}")
+    lengths = _check("brush_lengths", brush_lengths, 1e-3, 1.0)
+    speed_list = _check("speeds", speeds, 1e-3, 0.5)
+    seed_list = [int(s) for s in seeds]
+    if not seed_list:
+        raise ValueError("seeds: need at least one seed")
+
+    csv_path = Path(out) / "strokes.csv" if out is not None else None
+    rows = read_strokes(csv_path) if csv_path is not None and csv_path.exists() else []
+    done = {(r["wig"], r["brush_length"], r["speed"], r["seed"]) for r in rows}
+    todo = [
+        (w, b, v, s)
+        for w in wigs
+        for b in lengths
+        for v in speed_list
+        for s in seed_list
+        if (w, b, v, s) not in done
+    ]
+    bar = tqdm(total=len(todo), desc="strokes", unit="stroke", disable=not progress)
+    sims: dict[str, BrushingSim] = {}
+    try:
+        for wig, b_l, speed, seed in todo:
+            if wig not in sims:
+                sims[wig] = BrushingSim(SceneConfig(wig=wig))
+            sim = sims[wig]
+            sim.reset(seed)
+            res = sim.stroke(b_l, speed=speed, force_threshold=math.inf, rng=np.random.default_rng(seed))
+            rows.append(
+                {
+                    "wig": wig,
+                    "curliness": sim.curliness_true,
+                    "brush_length": b_l,
+                    "speed": speed,
+                    "seed": seed,
+                    "max_force": res.max_force,
+                    "sim_time": res.sim_time,
+                    "diverged": res.diverged,
+                }
+            )
+            if csv_path is not None:
+                write_text(csv_path, _to_csv(rows))  # after every stroke: an interrupt loses at most one
+            bar.set_postfix(wig=wig, b_l=b_l, v=speed, f_max=f"{res.max_force:.1f}")
+            bar.update(1)
+    finally:
+        bar.close()
+        for sim in sims.values():
+            sim.close()
+    rows.sort(key=lambda r: (r["curliness"], r["wig"], r["brush_length"], r["speed"], r["seed"]))
+    if out is not None:
+        write_text(Path(out) / "strokes.csv", _to_csv(rows))
+        write_text(Path(out) / "summary.md", summary_markdown(rows))
+        plot_strokes(rows, out)
+    return rows
+
+
+def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Mean, std and count of the max force per ``(wig, brush_length, speed)`` (diverged strokes excluded)."""
+    groups: dict[tuple[str, float, float], list[dict[str, Any]]] = {}
+    for r in rows:
+        if not r["diverged"]:
+            groups.setdefault((r["wig"], r["brush_length"], r["speed"]), []).append(r)
+    table = []
+    for (wig, b_l, speed), rs in groups.items():
+        f = np.array([r["max_force"] for r in rs])
+        table.append(
+            {
+                "wig": wig,
+                "curliness": rs[0]["curliness"],
+                "brush_length": b_l,
+                "speed": speed,
+                "n": len(rs),
+                "mean": float(f.mean()),
+                "std": float(f.std(ddof=1)) if len(f) > 1 else 0.0,
+            }
+        )
+    table.sort(key=lambda e: (e["curliness"], e["wig"], e["brush_length"], e["speed"]))
+    return table
+
+
+def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
+    lines = ["| wig | R/P | b_l | speed [m/s] | n | max force [N] |", "|---|---:|---:|---:|---:|---:|"]
+    for e in summarize(rows):
+        lines.append(
+            f"| {e['wig']} | {e['curliness']:.2f} | {e['brush_length']:.2f} | {e['speed']:.3f} | {e['n']} | "
+            f"{e['mean']:.2f} ± {e['std']:.2f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def plot_strokes(rows: Sequence[dict[str, Any]], out: str | Path) -> list[Path]:
+    """``force_vs_brush_length.png`` (Fig. 3.7) and ``force_vs_speed.png`` (Fig. 3.8), one line per wig
+    (and speed / brush length), mean ± std over seeds, with the pain threshold."""
+    from .scene import PAIN_THRESHOLD
+    from .viz import PALETTE, new_figure, save_figure
+
+    table = summarize(rows)
+    written = []
+    for x_key, other, fname, xlabel in (
+        ("brush_length", "speed", "force_vs_brush_length.png", "normalized brush length b_l"),
+        ("speed", "brush_length", "force_vs_speed.png", "brushing speed [m/s]"),
+    ):
+        fig, axes = new_figure(1, 1, width=6.0, height=4.2)
+        ax = axes[0, 0]
+        series = sorted({(e["curliness"], e["wig"], e[other]) for e in table})
+        for i, (_, wig, o) in enumerate(series):
+            es = sorted((e for e in table if e["wig"] == wig and e[other] == o), key=lambda e: e[x_key])
+            label = f"{wig} ({other.replace('_', ' ')} {o:g})"
+            ax.errorbar(
+                [e[x_key] for e in es],
+                [e["mean"] for e in es],
+                yerr=[e["std"] for e in es],
+                fmt="o-",
+                capsize=3,
+                color=PALETTE[i % len(PALETTE)],
+                label=label,
+            )
+        ax.axhline(PAIN_THRESHOLD, color="k", ls="--", lw=1, label="pain threshold F_T")
+        ax.set(
+            xlabel=xlabel, ylabel="max brushing force [N]", title=f"max force vs {x_key.replace('_', ' ')}"
+        )
+        ax.legend(fontsize=7)
+        path = Path(out) / fname
+        save_figure(fig, path)
+        written.append(path)
+    return written
