@@ -140,6 +140,11 @@ def test_reduced_pitch_trend():
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    reason="known gap (issue #7): halving the tine speed (0.02 -> 0.01 m/s) lowers f_max from 3.77 to 3.05 "
+    "(-19 %) on the reduced P/r = 36 helix, so the 0.02 m/s combing is not quasi-static to 15 % (measured)",
+)
 def test_quasi_static_speed_independence():
     base = CombingSetup(P_over_r=36, **REDUCED)
     fast = run_combing(base)
