@@ -46,7 +46,7 @@ def main() -> None:
         {
             "k": k,
             "k_lower": lo,
-            "k_upper": hi,
+            "k_upper": hi if np.isfinite(hi) else None,  # None: unbounded (strict JSON has no Infinity)
             "thesis_k": THESIS_K,
             "points": [pt.__dict__ for pt in points],
         },
