@@ -280,7 +280,9 @@ def section_step_cost(args: argparse.Namespace) -> None:
             mujoco.mj_resetData(sim.model, sim.data)
         sim.reset(0)
         stats = []
-        sim.add_observer(lambda s, _, stats=stats: stats.append((int((s.data.tree_asleep >= 0).sum()), s.data.nefc)))
+        sim.add_observer(
+            lambda s, _, stats=stats: stats.append((int((s.data.tree_asleep >= 0).sum()), s.data.nefc))
+        )
         t0 = time.process_time()
         res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(0))
         cpu = time.process_time() - t0

@@ -1,4 +1,4 @@
-"""Rod-pile study (chapter 4): ``hairbrush rodpile generate|sweep|compress|tension|fields|plot``."""
+"""Rod-pile study (chapter 4): ``hairbrush rodpile generate|summary|sweep|compress|tension|fields|plot``."""
 
 from __future__ import annotations
 
@@ -7,36 +7,75 @@ from pathlib import Path
 
 
 def _rodpile_summary(p) -> dict:
+    import math
+
     import numpy as np
 
     from ..studies.rod_pile import (
         bulk_rods,
         contact_numbers,
+        mean_abs_sin,
         orientations,
         packing_fraction,
+        phi_seen,
         philipse_contact_number,
         pile_height,
     )
 
     phi = packing_fraction(p)
     alpha = p.aspect_ratio
+    length = float(np.mean(p.lengths))
+    # φ away from the wall layer too (inner cylinder R − L/2), when the container is ≥ 2 L wide
+    inner = p.container_diameter / 2 - length / 2
+    wide = inner >= 0.5 * length * (1 - 1e-9)
+    phi_in = packing_fraction(p, wall_margin=length / 2) if wide else math.nan
     c = contact_numbers(p)
     bulk = bulk_rods(p)
     theta, _ = orientations(p)
     cb = float(c[bulk].mean()) if bulk.any() else float("nan")
+    msin = mean_abs_sin(p, bulk) if bulk.sum() >= 2 else math.nan
+    phi_b = phi_seen(p, bulk) if bulk.any() else math.nan  # φ around the bulk rods (radial profile)
+    # height profile: φ (inner cylinder if wide enough) and ⟨cos θ⟩ of rods centred in 5 slabs of H
+    zc = p.endpoints.mean(axis=1)[:, 2] / pile_height(p)
+    profile = []
+    for lo in np.arange(5) / 5:
+        sel = (zc >= lo) & (zc < lo + 0.2)
+        ph = packing_fraction(p, slab=(lo, lo + 0.2), wall_margin=length / 2 if wide else 0.0)
+        profile.append({"slab": [float(lo), float(lo + 0.2)], "phi_alpha": ph * alpha, "n_rods": int(sel.sum()),
+                        "mean_cos_theta": float(np.cos(theta[sel]).mean()) if sel.any() else math.nan})  # fmt: skip
+    radius = p.container_diameter / 2
+    radial = {f"{m:g}": packing_fraction(p, wall_margin=m * length) * alpha
+              for m in (0.0, 0.1, 0.2, 0.3, 0.4, 0.5) if m * length < 0.9 * radius}  # fmt: skip
     return {
-        "n_rods": p.n_rods, "alpha": alpha, "diameter": p.diameter, "height": pile_height(p), "phi_f": phi,
-        "phi_alpha": phi * alpha, "mean_contacts_all": float(c.mean()), "mean_contacts_bulk": cb,
+        "n_rods": p.n_rods, "alpha": alpha, "diameter": p.diameter, "height": pile_height(p),
+        "height_over_L": pile_height(p) / length, "phi_f": phi, "phi_alpha": phi * alpha,
+        "phi_f_inner": phi_in, "phi_alpha_inner": phi_in * alpha,
+        "mean_contacts_all": float(c.mean()), "mean_contacts_bulk": cb,
         "n_bulk_rods": int(bulk.sum()), "philipse_contacts": philipse_contact_number(phi, alpha),
-        "mean_cos_theta": float(np.cos(theta).mean()), "lost_rods": p.meta.get("lost_rods", 0),
+        "contacts_bulk_over_philipse": cb / philipse_contact_number(phi, alpha),
+        "mean_abs_sin_bulk": msin, "philipse_contacts_oriented": philipse_contact_number(phi, alpha, msin),
+        "phi_seen_by_bulk_rods": phi_b, "philipse_contacts_local": philipse_contact_number(phi_b, alpha),
+        "contacts_bulk_over_philipse_local": cb / philipse_contact_number(phi_b, alpha),
+        "mean_cos_theta": float(np.cos(theta).mean()),
+        "mean_cos_theta_bulk": float(np.cos(theta[bulk]).mean()) if bulk.any() else float("nan"),
+        "lost_rods": p.meta.get("lost_rods", 0), "generation_s": p.meta.get("wall_time_s", math.nan),
+        "profile": profile, "phi_alpha_vs_wall_margin_over_L": radial,
     }  # fmt: skip
 
 
 def _print_summary(tag: str, s: dict) -> None:
     print(
-        f"{tag}: n={s['n_rods']} α={s['alpha']:.1f} H={s['height'] * 1e3:.1f} mm φ_f={s['phi_f']:.4f} "
-        f"φα={s['phi_alpha']:.2f} ⟨c⟩bulk={s['mean_contacts_bulk']:.2f} (all {s['mean_contacts_all']:.2f}) "
-        f"Philipse={s['philipse_contacts']:.2f} ⟨cosθ⟩={s['mean_cos_theta']:.3f}"
+        f"{tag}: n={s['n_rods']} α={s['alpha']:.1f} H={s['height'] * 1e3:.1f} mm ({s['height_over_L']:.2f} L) "
+        f"φ_f={s['phi_f']:.4f} φα={s['phi_alpha']:.2f} (inner {s['phi_alpha_inner']:.2f}) "
+        f"⟨c⟩bulk={s['mean_contacts_bulk']:.2f} (all {s['mean_contacts_all']:.2f}) "
+        f"Philipse={s['philipse_contacts']:.2f} (measured orientations {s['philipse_contacts_oriented']:.2f}; "
+        f"at the φα={s['phi_seen_by_bulk_rods'] * s['alpha']:.2f} around bulk rods {s['philipse_contacts_local']:.2f}) "
+        f"⟨cosθ⟩={s['mean_cos_theta']:.3f} "
+        f"(bulk {s['mean_cos_theta_bulk']:.3f}) t_gen={s['generation_s']:.0f} s\n  profile (φα, ⟨cosθ⟩) by fifths "
+        "of H: "
+        + "  ".join(f"{r['phi_alpha']:.2f},{r['mean_cos_theta']:.2f}" for r in s["profile"])
+        + "\n  φα in the inner cylinder R − m L, m = "
+        + "  ".join(f"{k}: {v:.2f}" for k, v in s["phi_alpha_vs_wall_margin_over_L"].items())
     )
 
 
@@ -50,6 +89,7 @@ def _cmd_rodpile_generate(args: argparse.Namespace) -> int:
         p = generate_packing(
             args.n_rods, args.length, d, container_diameter=args.container * args.length, seed=args.seed,
             jostle=not args.no_jostle, batch_size=args.batch, friction=args.friction, progress=not args.quiet,
+            freeze_depth=args.freeze_depth, terminal_speed=args.terminal_speed, placement=args.placement,
         )  # fmt: skip
     except ValueError as exc:
         raise SystemExit(f"hairbrush rodpile generate: {exc}") from exc
@@ -62,6 +102,24 @@ def _cmd_rodpile_generate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_rodpile_summary(args: argparse.Namespace) -> int:
+    from ..io import write_json
+    from ..studies.rod_pile import load_packing
+
+    rows = []
+    for path in args.piles:
+        try:
+            s = _rodpile_summary(load_packing(path))
+        except ValueError as exc:
+            raise SystemExit(f"hairbrush rodpile summary: {exc}") from exc
+        _print_summary(str(path), s)
+        rows.append({"path": str(path), **s})
+    if args.out:
+        write_json(args.out, rows)
+        print(f"wrote {args.out}")
+    return 0
+
+
 def _cmd_rodpile_sweep(args: argparse.Namespace) -> int:
     from ..io import write_json
     from ..studies.rod_pile import generate_packing, load_packing, plot_phi_alpha
@@ -69,13 +127,13 @@ def _cmd_rodpile_sweep(args: argparse.Namespace) -> int:
     out = Path(args.out)
     rows = []
     for alpha, n in zip(args.alphas, args.n_rods, strict=True):
-        path = out / f"pile_alpha{alpha:g}_seed{args.seed}.npz"
+        path = out / f"pile_alpha{alpha:g}_n{n}_seed{args.seed}.npz"
         if path.exists():  # resume: piles already generated are reused
             p = load_packing(path)
         else:
             p = generate_packing(n, args.length, args.length / alpha, container_diameter=args.container * args.length,
                                  seed=args.seed, friction=args.friction, batch_size=args.batch,
-                                 progress=not args.quiet)  # fmt: skip
+                                 freeze_depth=args.freeze_depth, progress=not args.quiet)  # fmt: skip
             p.save(path)
         s = _rodpile_summary(p)
         _print_summary(f"α={alpha:g}", s)
@@ -88,29 +146,58 @@ def _cmd_rodpile_sweep(args: argparse.Namespace) -> int:
 
 
 def _cmd_rodpile_compress(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from ..io import write_json
     from ..studies.rod_pile import compress, load_packing, plot_compression, plot_structure
 
     out = Path(args.out)
+    schedule = None
+    if args.schedule is not None:
+        start, stop, step = args.schedule
+        if not (step > 0 and stop >= start):
+            raise SystemExit("hairbrush rodpile compress: --schedule: need START ≤ STOP and STEP > 0")
+        schedule = np.arange(start, stop + 0.5 * step, step)
     try:
         p = load_packing(args.pile)
-        res = compress(p, args.strain_max, args.cycles, args.rate, snapshot_strains=[args.strain_max],
-                       progress=not args.quiet)  # fmt: skip
+        first = args.strain_max if schedule is None else float(schedule[0])
+        res = compress(p, args.strain_max, args.cycles, args.rate, strain_schedule=schedule,
+                       snapshot_strains=[first], progress=not args.quiet)  # fmt: skip
+        single = None
+        if args.compare_single:
+            single = compress(p, float(res.cycle_strain_max.max()), 1, args.rate, progress=not args.quiet)
     except ValueError as exc:
         raise SystemExit(f"hairbrush rodpile compress: {exc}") from exc
     res.save(out / "compression.npz")
-    squeezed = res.snapshots[args.strain_max]
+    if single is not None:
+        single.save(out / "compression_single.npz")
+    squeezed = res.snapshots[first]
     squeezed.save(out / "compressed.npz")
     res.final.save(out / "after.npz")
     summary = {
-        "h0": res.h0, "weight": res.weight, "max_load": res.max_load, "dissipated_J": res.dissipated,
-        "before": _rodpile_summary(p), "after_unloading": _rodpile_summary(res.final),
+        "h0": res.h0, "weight": res.weight, "cycle_strain_max": res.cycle_strain_max, "max_load": res.max_load,
+        "dissipated_J": res.dissipated, "before": _rodpile_summary(p), "after_unloading": _rodpile_summary(res.final),
     }  # fmt: skip
+    if len(res.max_load) >= 2 and np.ptp(res.cycle_strain_max) == 0:
+        a, b = res.softening_fit()
+        summary["softening_fit_N"] = {"a": a, "b_per_ln_cycle": b}
+    if np.ptp(res.cycle_strain_max) > 0:
+        summary["reload_load_at_previous_max"] = res.reload_load_at_previous_max()
+    if single is not None:
+        summary["single_cycle_max_load"] = float(single.max_load[0])
     write_json(out / "compression.json", summary)
-    plot_compression(res, out / "compression.png")
-    plot_structure({"ε = 0": p, f"ε = {args.strain_max:g}": squeezed}, out / "structure.png")
+    plot_compression(res, out / "compression.png", single=single)
+    plot_structure({"ε = 0": p, f"ε = {first:g}": squeezed}, out / "structure.png")
+    print("cycle ε_max: " + ", ".join(f"{x:.3g}" for x in res.cycle_strain_max))
     print("max load per cycle [N]: " + ", ".join(f"{x:.4g}" for x in res.max_load))
     print("dissipated per cycle [mJ]: " + ", ".join(f"{x * 1e3:.4g}" for x in res.dissipated))
+    if "softening_fit_N" in summary:
+        print(f"softening fit: max load ≈ {a:.4g} {b:+.4g} ln(cycle) N")
+    if "reload_load_at_previous_max" in summary:
+        print("reload load at previous ε_max [N]: "
+              + ", ".join(f"{x:.4g}" for x in summary["reload_load_at_previous_max"]))  # fmt: skip
+    if single is not None:
+        print(f"single cycle to ε = {res.cycle_strain_max.max():.3g}: max load {single.max_load[0]:.4g} N")
     print(f"wrote {out}/compression.npz, compressed.npz, after.npz, compression.json, compression.png")
     return 0
 
@@ -127,7 +214,11 @@ def _cmd_rodpile_tension(args: argparse.Namespace) -> int:
         raise SystemExit(f"hairbrush rodpile tension: {exc}") from exc
     write_json(out / "tension.json", {k: getattr(res, k) for k in res.__dataclass_fields__})
     plot_tension(res, out / "tension.png")
-    print(f"disentanglement energy {res.energy * 1e3:.4g} mJ, separation at {res.separation * 1e3:.3g} mm "
+    h = res.displacement[-1] / res.strain[-1]
+    sep = (f"separated at a lift of {res.separation * 1e3:.3g} mm ({res.separation / h:.3g} H), "
+           f"hanging weight {res.hanging_weight:.4g} N" if res.separated
+           else f"NOT separated by the maximum lift {res.displacement[-1] * 1e3:.3g} mm")  # fmt: skip
+    print(f"disentanglement energy {res.energy * 1e3:.4g} mJ; {sep} "
           f"(glued: {res.n_glued_top} top, {res.n_glued_bottom} bottom)")  # fmt: skip
     return 0
 
@@ -168,17 +259,29 @@ def _cmd_rodpile_fields(args: argparse.Namespace) -> int:
 
 
 def _cmd_rodpile_plot(args: argparse.Namespace) -> int:
+    """Redraw the figures of a results directory: fields (fields_*.npz) and/or compression (compression.npz)."""
     from ..studies.rod_fields import Fields, plot_fields
+    from ..studies.rod_pile import CompressionResult, plot_compression
 
     out = Path(args.dir)
     files = sorted(out.glob("fields_*.npz"))
-    if not files:
-        raise SystemExit(f"hairbrush rodpile plot: no fields_*.npz in {out}")
-    fields = {}
-    for f in files:
-        fl = Fields.load(f)
-        fields[f"{f.stem[7:]} (ε = {fl.meta.get('strain', 0.0):.3g})"] = fl
-    print("wrote " + ", ".join(str(x) for x in plot_fields(fields, out / "fields")))
+    comp = out / "compression.npz"
+    if not files and not comp.exists():
+        raise SystemExit(f"hairbrush rodpile plot: no fields_*.npz or compression.npz in {out}")
+    written = []
+    if files:
+        fields = {}
+        for f in files:
+            fl = Fields.load(f)
+            fields[f"{f.stem[7:]} (ε = {fl.meta.get('strain', 0.0):.3g})"] = fl
+        written += plot_fields(fields, out / "fields")
+    if comp.exists():
+        res = CompressionResult.load_file(comp)
+        single = out / "compression_single.npz"
+        single_res = CompressionResult.load_file(single) if single.exists() else None
+        written.append(plot_compression(res, out / "compression.png", single=single_res))
+        print("max load per cycle [N]: " + ", ".join(f"{x:.4g}" for x in res.max_load))
+    print("wrote " + ", ".join(str(x) for x in written))
     return 0
 
 
@@ -204,9 +307,32 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     g.add_argument("--batch", type=int, default=10, help="rods dropped together (default 10)")
     g.add_argument("--seed", type=int, default=0)
     g.add_argument("--no-jostle", action="store_true")
+    g.add_argument(
+        "--freeze-depth",
+        type=float,
+        default=None,
+        help="freeze rods buried deeper than this many rod lengths while adding rods (speed-up)",
+    )
+    g.add_argument(
+        "--terminal-speed",
+        type=float,
+        default=0.25,
+        help="deposition drag terminal speed in rod diameters per time step (default 0.25, max 0.5)",
+    )
+    g.add_argument(
+        "--placement",
+        choices=("centered", "uniform"),
+        default="centered",
+        help="start positions of new rods: centered (default) or uniform over all configurations that fit",
+    )
     g.add_argument("--out", default="runs/rodpile/pile.npz")
     common(g, pile_arg=False)
     g.set_defaults(func=_cmd_rodpile_generate)
+
+    sm = rsub.add_parser("summary", help="φ_f α, contacts vs Philipse, orientations, profiles of saved piles")
+    sm.add_argument("piles", nargs="+", help="packing files (.npz / CSV)")
+    sm.add_argument("--out", default=None, help="write the summaries as JSON")
+    sm.set_defaults(func=_cmd_rodpile_summary)
 
     s = rsub.add_parser("sweep", help="φ_f and ⟨c⟩ vs aspect ratio (Fig. 4.5); resumable")
     s.add_argument("--alphas", type=float, nargs="+", default=[38.0, 76.0, 100.0])
@@ -216,6 +342,12 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     s.add_argument("--friction", type=float, default=0.4)
     s.add_argument("--batch", type=int, default=20)
     s.add_argument("--seed", type=int, default=0)
+    s.add_argument(
+        "--freeze-depth",
+        type=float,
+        default=None,
+        help="freeze rods buried deeper than this many rod lengths while adding rods (speed-up)",
+    )
     s.add_argument("--out", default="runs/rodpile/sweep")
     common(s, pile_arg=False)
     s.set_defaults(func=_cmd_rodpile_sweep)
@@ -225,13 +357,31 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     c.add_argument("--strain-max", type=float, default=0.15)
     c.add_argument("--cycles", type=int, default=3)
     c.add_argument("--rate", type=float, default=None, help="strain rate [1/s] (default: quasi-static)")
+    c.add_argument(
+        "--schedule",
+        type=float,
+        nargs=3,
+        metavar=("START", "STOP", "STEP"),
+        default=None,
+        help="cycles of increasing ε_max START, START+STEP, ..., STOP (Fig. 4.6: 0.06 0.30 0.03)",
+    )
+    c.add_argument(
+        "--compare-single",
+        action="store_true",
+        help="also run one cycle to the largest ε_max on the original pile (red curve of Fig. 4.6)",
+    )
     c.add_argument("--out", default="runs/rodpile/compress")
     c.set_defaults(func=_cmd_rodpile_compress)
 
     t = rsub.add_parser("tension", help="glue top/bottom layers and pull apart (Fig. 5.3)")
     common(t)
     t.add_argument("--glue-depth", type=float, default=0.15, help="glued layer thickness / pile height")
-    t.add_argument("--strain-max", type=float, default=1.0, help="plate lift / pile height")
+    t.add_argument(
+        "--strain-max",
+        type=float,
+        default=2.0,
+        help="maximum plate lift / pile height (the run stops earlier once the parts separate)",
+    )
     t.add_argument("--out", default="runs/rodpile/tension")
     t.set_defaults(func=_cmd_rodpile_tension)
 
@@ -244,9 +394,13 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     f.add_argument("--quiet", action="store_true")
     f.set_defaults(func=_cmd_rodpile_fields)
 
-    pl = rsub.add_parser("plot", help="redraw the field figures from fields_*.npz in a directory")
+    pl = rsub.add_parser("plot", help="redraw figures from fields_*.npz / compression.npz in a directory")
     pl.add_argument("dir")
     pl.set_defaults(func=_cmd_rodpile_plot)
+    # CT stacks (thesis §4.6): `tomogram` renders a packing, `segment` recovers rods from a stack.
+    from .rodpile_segment import add_segment_parser
+
+    add_segment_parser(rsub)
 
 
 def register(sub: argparse._SubParsersAction) -> None:

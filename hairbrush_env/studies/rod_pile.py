@@ -17,10 +17,24 @@ Other model choices (each changes dynamics only, not the statics of the final pi
 
 * the axial moment of inertia is raised to 5 % of the transverse one: a thin rod's true axial inertia (m d²/8) makes
   the spin DOF stiff enough to blow up the integrator at any practical step;
-* while rods are deposited and jostled they feel linear drag with terminal speed 0.25 d per step (plus a weak
-  angular drag), so no rod tunnels through another; drag is switched off for the mechanical tests;
+* while rods are deposited and jostled they feel linear drag with terminal speed 0.25 d per step
+  (``terminal_speed``; plus a weak angular drag), so no rod tunnels through another; drag is switched off for the
+  mechanical tests;
 * rods are added in batches at non-overlapping random positions and isotropic orientations just above the current
-  pile, and the model is recompiled per batch (only deposited rods are simulated).
+  pile, and the model is recompiled per batch (only deposited rods are simulated);
+* optional ``freeze_depth``: during deposition, rods buried deeper than ``freeze_depth·L`` below the pile top are
+  static geoms (not simulated); all rods are released for the final jostle and drag-free settle.
+
+Known model limitations: MuJoCo's soft friction lets loaded frictional contacts creep slowly. A "settled" 300-rod
+pile (α = 76) run for 1 200 more steps without drag kept moving at ~0.1 √(g d) and its fastest rod end drifted
+3.9 d (2.7 d with ``noslip_iterations = 10``), while ⟨|cos θ|⟩ changed by < 0.001
+(``python scripts/benchmark_rodpile.py --skip-fields --skip-generate --solver-check PILE``). Placement:
+new rods start at random positions fully inside the container (``placement``); with the default "centered" rule
+flat rods start near the axis, which strengthens the radial inhomogeneity of φ in a 1.5 L container (README).
+
+Determinism: one process, one thread, fixed seed → bitwise identical packings (MuJoCo's pipeline is
+deterministic for identical inputs; all randomness comes from ``numpy.random.default_rng(seed)``; wall time is
+only recorded in ``meta``). Tested across calls and processes.
 
 Measurements
 ------------
@@ -29,8 +43,15 @@ Measurements
 * :func:`contact_numbers` — rod–rod contacts per rod from ``data.contact`` after settling; compare
   :func:`philipse_contact_number` (random contact equation, Philipse 1996).
 * :func:`orientations` — polar θ ∈ [0, π/2] from the vertical and azimuth ϕ ∈ [0, π) of each rod axis (Fig. 4.7).
-* :func:`compress` — piston load–strain loops (Fig. 4.2, 4.6); :func:`tension` — glued top/bottom layers pulled
-  apart, disentanglement energy (Fig. 5.3).
+* :func:`packing_fraction` with ``wall_margin`` — φ_f only in the inner cylinder R − margin (no wall layer);
+  :func:`radial_packing_fraction` — φ in annuli; :func:`phi_seen` — that profile averaged along chosen rods (the
+  φ around them, for a local Philipse comparison in radially inhomogeneous piles).
+* :func:`mean_abs_sin` — ⟨|sin γ|⟩ of rod pairs; :func:`philipse_contact_number` accepts it to evaluate the random
+  contact equation for the measured (non-isotropic) orientation distribution.
+* :func:`compress` — piston load–strain loops (Fig. 4.2), repeated cycles (softening, Fig. 4.2d, with a fit
+  max load = a + b ln(cycle)) and cycles of increasing amplitude (``strain_schedule``, Mullins-like softening,
+  Fig. 4.6); :func:`tension` — glued top/bottom layers pulled apart until they separate (contact-graph criterion),
+  disentanglement energy (Fig. 5.3).
 """
 
 from __future__ import annotations
@@ -38,6 +59,7 @@ from __future__ import annotations
 import csv
 import json
 import math
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -54,10 +76,13 @@ __all__ = [
     "contact_numbers",
     "generate_packing",
     "load_packing",
+    "mean_abs_sin",
     "orientations",
     "packing_fraction",
+    "phi_seen",
     "philipse_contact_number",
     "pile_height",
+    "radial_packing_fraction",
     "tension",
 ]
 
@@ -239,39 +264,132 @@ def pile_height(packing: Packing, q: float = 95.0) -> float:
     return float(np.percentile(tops, q))
 
 
-def _clipped_length_in_slab(packing: Packing, lo: float, hi: float) -> float:
+def _clipped_length(packing: Packing, lo: float, hi: float, radius: float = math.inf) -> float:
+    """Total centerline length inside the slab lo ≤ z ≤ hi and the cylinder x² + y² ≤ radius² (exact clipping)."""
+    return float(np.sum(_clipped_segment_lengths(packing, lo, hi, radius)))
+
+
+def _clipped_segment_lengths(packing: Packing, lo: float, hi: float, radius: float = math.inf) -> np.ndarray:
+    """Per polyline segment (:meth:`Packing.segments`), its length inside the slab and the cylinder."""
     a, b, _ = packing.segments()
-    za, zb = a[:, 2], b[:, 2]
-    dz = zb - za
+    d = b - a
+    seg_len = np.linalg.norm(d, axis=1)
+    za, dz = a[:, 2], d[:, 2]
     with np.errstate(divide="ignore", invalid="ignore"):
-        t_lo = np.where(dz != 0, (lo - za) / dz, np.where((za >= lo) & (za <= hi), -np.inf, np.inf))
-        t_hi = np.where(dz != 0, (hi - za) / dz, np.where((za >= lo) & (za <= hi), np.inf, -np.inf))
+        inside_z = (za >= lo) & (za <= hi)
+        t_lo = np.where(dz != 0, (lo - za) / dz, np.where(inside_z, -np.inf, np.inf))
+        t_hi = np.where(dz != 0, (hi - za) / dz, np.inf)  # horizontal outside the slab: t0 = t1 = 1
     t0 = np.clip(np.minimum(t_lo, t_hi), 0, 1)
     t1 = np.clip(np.maximum(t_lo, t_hi), 0, 1)
-    return float(np.sum(np.maximum(t1 - t0, 0) * np.linalg.norm(b - a, axis=1)))
+    if math.isfinite(radius):
+        # |a_xy + t d_xy|² ≤ r²  ⇔  A t² + B t + C ≤ 0
+        qa = d[:, 0] ** 2 + d[:, 1] ** 2
+        qb = 2 * (a[:, 0] * d[:, 0] + a[:, 1] * d[:, 1])
+        qc = a[:, 0] ** 2 + a[:, 1] ** 2 - radius**2
+        vertical = qa < 1e-30
+        disc = qb * qb - 4 * qa * qc
+        sq = np.sqrt(np.maximum(disc, 0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r0 = np.where(vertical, np.where(qc <= 0, -np.inf, np.inf), (-qb - sq) / (2 * qa))
+            r1 = np.where(vertical, np.where(qc <= 0, np.inf, -np.inf), (-qb + sq) / (2 * qa))
+        miss = ~vertical & (disc < 0)
+        r0, r1 = np.where(miss, np.inf, r0), np.where(miss, -np.inf, r1)
+        t0 = np.maximum(t0, np.clip(r0, 0, 1))
+        t1 = np.minimum(t1, np.clip(r1, 0, 1))
+    return np.maximum(t1 - t0, 0) * seg_len
 
 
-def packing_fraction(packing: Packing, *, slab: tuple[float, float] = (0.2, 0.8)) -> float:
+def packing_fraction(
+    packing: Packing, *, slab: tuple[float, float] = (0.2, 0.8), wall_margin: float = 0.0
+) -> float:
     """Bulk packing fraction φ_f: rod volume in the slab ``slab·H`` over the container volume of that slab.
 
     Rod volume = clipped centerline length × πd²/4 (cylindrical rods, as the experiments). H from
-    :func:`pile_height`. Needs the container diameter.
+    :func:`pile_height`. Needs the container diameter. ``wall_margin`` [m] > 0 measures only in the inner
+    cylinder of radius R − wall_margin (away from the wall layer, where rods align with the wall).
     """
     if math.isnan(packing.container_diameter):
         raise ValueError("container_diameter: needed for the packing fraction (unknown for this packing)")
     lo_f, hi_f = slab
     if not 0 <= lo_f < hi_f <= 1:
         raise ValueError(f"slab: expected 0 ≤ lo < hi ≤ 1, got {slab!r}")
+    r = packing.container_diameter / 2 - wall_margin
+    if not (math.isfinite(wall_margin) and wall_margin >= 0 and r > 0):
+        raise ValueError(
+            f"wall_margin: must be ≥ 0 and smaller than the container radius, got {wall_margin!r}"
+        )
     h = pile_height(packing)
     lo, hi = lo_f * h, hi_f * h
-    length = _clipped_length_in_slab(packing, lo, hi)
-    r = packing.container_diameter / 2
+    length = _clipped_length(packing, lo, hi, r if wall_margin > 0 else math.inf)
     return length * math.pi * packing.diameter**2 / 4 / (math.pi * r * r * (hi - lo))
 
 
-def philipse_contact_number(phi: float, alpha: float) -> float:
-    """Random contact equation (Philipse 1996): ⟨c⟩ = φ (6α² + 24α + 16) / (3α + 2); → 2φα for α ≫ 1."""
-    return phi * (6 * alpha**2 + 24 * alpha + 16) / (3 * alpha + 2)
+def radial_packing_fraction(
+    packing: Packing, n_annuli: int = 6, *, slab: tuple[float, float] = (0.2, 0.8)
+) -> tuple[np.ndarray, np.ndarray]:
+    """φ in ``n_annuli`` equal-width annuli of the container within the bulk slab: (edges [m], φ per annulus).
+
+    Long rods in a container only a little wider than L cannot lie near the wall except tangentially, so φ is
+    radially inhomogeneous; this profile quantifies it and gives the φ "seen" by rods at a given radius.
+    """
+    if math.isnan(packing.container_diameter):
+        raise ValueError("container_diameter: needed for the radial profile (unknown for this packing)")
+    if n_annuli < 1:
+        raise ValueError(f"n_annuli: must be ≥ 1, got {n_annuli!r}")
+    h = pile_height(packing)
+    lo, hi = slab[0] * h, slab[1] * h
+    if not 0 <= slab[0] < slab[1] <= 1:
+        raise ValueError(f"slab: expected 0 ≤ lo < hi ≤ 1, got {slab!r}")
+    edges = np.linspace(0, packing.container_diameter / 2, n_annuli + 1)
+    cum = np.array([0.0] + [_clipped_length(packing, lo, hi, r) for r in edges[1:-1]]
+                   + [_clipped_length(packing, lo, hi)])  # fmt: skip
+    vol = math.pi * np.diff(edges**2) * (hi - lo)
+    return edges, np.diff(cum) * math.pi * packing.diameter**2 / 4 / vol
+
+
+def phi_seen(packing: Packing, mask: np.ndarray, n_annuli: int = 6, *, slab=(0.2, 0.8)) -> float:
+    """Length-weighted mean of the radial φ profile (:func:`radial_packing_fraction`) along the rods in ``mask``
+    (exact length of each rod in each annulus) — the packing fraction around those rods, to evaluate Philipse's
+    equation locally in a radially inhomogeneous pile."""
+    edges, phi = radial_packing_fraction(packing, n_annuli, slab=slab)
+    mask = np.asarray(mask, bool)
+    if not mask.any():
+        raise ValueError("mask: selects no rods")
+    _, _, owner = packing.segments()
+    sel = mask[owner]
+    cum = [np.zeros(sel.sum())]
+    for r in edges[1:-1]:
+        cum.append(_clipped_segment_lengths(packing, -math.inf, math.inf, r)[sel])
+    cum.append(_clipped_segment_lengths(packing, -math.inf, math.inf)[sel])
+    per_annulus = np.diff(np.array(cum), axis=0).sum(axis=1)  # length of the selected rods in each annulus
+    return float(per_annulus @ phi / per_annulus.sum())
+
+
+def philipse_contact_number(phi: float, alpha: float, mean_abs_sin: float | None = None) -> float:
+    """Random contact equation (Philipse 1996): ⟨c⟩ = φ (6α² + 24α + 16) / (3α + 2); → 2φα for α ≫ 1.
+
+    It is ⟨c⟩ = φ V_ex / V_rod with the excluded volume of two spherocylinders V_ex = 4πd³/3 + 2πd²L + 2L²d
+    ⟨|sin γ|⟩ (γ the angle between their axes), and ⟨|sin γ|⟩ = π/4 for isotropic rods. ``mean_abs_sin``
+    replaces π/4 by a measured value (:func:`mean_abs_sin`), i.e. the same equation for a non-isotropic orientation
+    distribution (6α² → (24/π) ⟨|sin γ|⟩ α²), still assuming uncorrelated positions.
+    """
+    s = math.pi / 4 if mean_abs_sin is None else float(mean_abs_sin)
+    if not 0 <= s <= 1:
+        raise ValueError(f"mean_abs_sin: must be in [0, 1], got {mean_abs_sin!r}")
+    return phi * (24 / math.pi * s * alpha**2 + 24 * alpha + 16) / (3 * alpha + 2)
+
+
+def mean_abs_sin(packing: Packing, mask: np.ndarray | None = None) -> float:
+    """⟨|sin γ|⟩ over all pairs of distinct rods (γ = angle between their end-to-end axes; π/4 if isotropic)."""
+    ep = packing.endpoints if mask is None else packing.endpoints[np.asarray(mask, bool)]
+    if len(ep) < 2:
+        raise ValueError("mask: need at least 2 rods")
+    u = ep[:, 1] - ep[:, 0]
+    u /= np.linalg.norm(u, axis=1, keepdims=True)
+    cos = np.clip(u @ u.T, -1, 1)
+    sin = np.sqrt(1 - cos**2)
+    n = len(u)
+    return float((sin.sum() - np.trace(sin)) / (n * (n - 1)))
 
 
 def orientations(packing: Packing) -> tuple[np.ndarray, np.ndarray]:
@@ -303,6 +421,7 @@ class SimParams:
     dt_factor: float = 0.1  # dt = dt_factor · √(d/g)
     contact_tol: float = 0.02  # rod–rod "contact" if surfaces are closer than contact_tol · d
     wall_friction: float | None = None  # None → friction
+    terminal_speed: float = 0.25  # deposition drag: terminal speed in rod diameters per time step
 
     @property
     def dt(self) -> float:
@@ -428,10 +547,10 @@ class _Pile:
 
     # -- state
     def set_drag(self, on: bool) -> None:
-        """Deposition drag: terminal speed 0.25 d per step; angular relaxation in 50 ms."""
+        """Deposition drag: terminal speed ``terminal_speed`` d per step (default 0.25); angular relaxation 50 ms."""
         sp = self.sp
         dof = self.model.dof_damping.reshape(-1, 6) if self.model.nv else np.zeros((0, 6))
-        vt = 0.25 * sp.diameter / sp.dt
+        vt = sp.terminal_speed * sp.diameter / sp.dt
         dof[:, :3] = sp.mass * GRAVITY / vt if on else 0.0
         dof[:, 3:] = sp.inertia[0] / 0.05 if on else 0.0
 
@@ -543,8 +662,13 @@ def _segment_distances(a0, a1, b0s, b1s) -> np.ndarray:
     return np.array([_segment_distance(a0, a1, b0, b1) for b0, b1 in zip(b0s, b1s, strict=True)])
 
 
-def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float):
-    """Random isotropic rods fully inside the container, not overlapping each other or the pile's top."""
+def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float, placement: str = "centered"):
+    """Random isotropic rods fully inside the container, not overlapping each other or the pile's top.
+
+    ``placement``: "centered" — the centre is uniform in a disk of radius R − (L/2)|u_xy| (fits for any azimuth,
+    so flat rods start near the axis); "uniform" — (centre, direction) uniform over all configurations that fit
+    (rejection sampling), so flat rods can also start as chords near the wall.
+    """
     L, d = sp.length, sp.diameter
     r = sp.container_diameter / 2
     band = L * max(1.0, k / 6)
@@ -560,9 +684,20 @@ def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float)
         for _attempt in range(200):
             u = rng.normal(size=3)
             u /= np.linalg.norm(u)
-            rmax = max(r - L / 2 * math.hypot(u[0], u[1]) - 1.5 * d, 0.0)
-            rr = math.sqrt(rng.random()) * rmax
-            ph = rng.random() * 2 * math.pi
+            if placement == "uniform":
+                rin = r - 1.5 * d
+                for _fit in range(1000):
+                    rr, ph = math.sqrt(rng.random()) * rin, rng.random() * 2 * math.pi
+                    cx, cy = rr * math.cos(ph), rr * math.sin(ph)
+                    ex, ey = u[0] * L / 2, u[1] * L / 2
+                    if max(math.hypot(cx + ex, cy + ey), math.hypot(cx - ex, cy - ey)) <= rin:
+                        break
+                    u = rng.normal(size=3)
+                    u /= np.linalg.norm(u)
+            else:
+                rmax = max(r - L / 2 * math.hypot(u[0], u[1]) - 1.5 * d, 0.0)
+                rr = math.sqrt(rng.random()) * rmax
+                ph = rng.random() * 2 * math.pi
             ext = L / 2 * abs(u[2]) + d
             c = np.array([rr * math.cos(ph), rr * math.sin(ph), z_top + ext + 2 * d + rng.random() * band])
             a0, a1 = c - u * L / 2, c + u * L / 2
@@ -618,6 +753,9 @@ def generate_packing(
     n_shakes: int = 2,
     tilt_deg: float = 20.0,
     friction: float = 0.4,
+    freeze_depth: float | None = None,
+    terminal_speed: float = 0.25,
+    placement: str = "centered",
     progress: bool = True,
 ) -> Packing:
     """Drop ``n_rods`` rigid rods in small batches into a cylinder, jostle and settle (thesis §4.5.1).
@@ -640,6 +778,20 @@ def generate_packing(
         Shakes per jostle episode and the tilt of the container during a shake.
     friction : float
         Coulomb friction coefficient (steel on steel ≈ 0.3–0.5).
+    freeze_depth : float, optional
+        Speed-up for tall piles, in rod lengths (e.g. 1.0): while rods are being added, rods lying entirely more
+        than ``freeze_depth·L`` below the current pile top are made static (they carry the rods above but are not
+        simulated), so the cost of a batch scales with the active top layer, not the whole pile. The jostle at
+        half-filling then only shakes the active layer. At the end every rod is released and the whole pile is
+        jostled (if ``jostle``) and settled without drag, so compaction under the full overburden is simulated.
+        ``None`` (default): every rod is simulated all the time.
+    terminal_speed : float
+        Terminal speed of the deposition drag in rod diameters per time step (default 0.25, i.e. 2.5 √(g d));
+        larger values let rods hit the pile faster (≤ 0.5 so that a rod cannot pass through another in one step).
+    placement : {"centered", "uniform"}
+        Where new rods start (see ``_place_batch``): "centered" (default) keeps the centre within R − (L/2)|u_xy|
+        of the axis, so flat rods start near the axis; "uniform" samples (centre, direction) uniformly over all
+        configurations inside the container.
     progress : bool
         Show a tqdm progress bar.
 
@@ -661,28 +813,45 @@ def generate_packing(
         raise ValueError(f"container_diameter: must exceed the rod length, got {cdia!r}")
     if batch_size < 1:
         raise ValueError(f"batch_size: must be ≥ 1, got {batch_size!r}")
-    sp = SimParams(length, diameter, cdia, friction=friction)
+    if placement not in ("centered", "uniform"):
+        raise ValueError(f"placement: must be 'centered' or 'uniform', got {placement!r}")
+    if not 0 < terminal_speed <= 0.5:
+        raise ValueError(
+            f"terminal_speed: must be in (0, 0.5] rod diameters per step, got {terminal_speed!r}"
+        )
+    if freeze_depth is not None and not (math.isfinite(freeze_depth) and freeze_depth > 0):
+        raise ValueError(f"freeze_depth: must be > 0 (rod lengths) or None, got {freeze_depth!r}")
+    t_wall = time.perf_counter()  # only reported in meta; never used in the simulation
+    sp = SimParams(length, diameter, cdia, friction=friction, terminal_speed=terminal_speed)
     rng = np.random.default_rng(seed)
     ep = np.zeros((0, 2, 3))
     jostle_at = {round(n_rods * 0.5)} if jostle else set()
     pile = None
     t_fall = math.sqrt(2 * length / GRAVITY) * 4  # generous: drag slows the fall
+    max_frozen = 0
     with tqdm(
         total=n_rods, desc=f"dropping rods (α={length / diameter:.0f})", unit="rod", disable=not progress
     ) as bar:
         while len(ep) < n_rods:
             k = min(batch_size, n_rods - len(ep))
             z_top = float(np.percentile(np.maximum(ep[:, 0, 2], ep[:, 1, 2]), 90)) if len(ep) else 0.0
-            new = _place_batch(rng, k, sp, ep, z_top)
+            new = _place_batch(rng, k, sp, ep, z_top, placement)
+            frozen = np.zeros(len(ep) + k, bool)
+            if freeze_depth is not None and len(ep):
+                frozen[: len(ep)] = ep[:, :, 2].max(axis=1) < z_top - freeze_depth * length
             ep = np.concatenate([ep, new])
             pos, quat, _ = _poses_from_endpoints(ep)
-            pile = _Pile(sp, pos, quat)
+            pile = _Pile(sp, pos, quat, glued_bottom=frozen)
+            max_frozen = max(max_frozen, int(frozen.sum()))
             pile.settle(max_time=1.5 * t_fall, min_time=0.2 * t_fall)
             ep = pile.endpoints()
             bar.update(k)
             if len(ep) in jostle_at:
                 _jostle(pile, rng, n_shakes, tilt_deg)
                 ep = pile.endpoints()
+    if freeze_depth is not None and pile.glued_bottom.any():
+        pos, quat, _ = _poses_from_endpoints(ep)
+        pile = _Pile(sp, pos, quat)  # release every rod
     if jostle:
         _jostle(pile, rng, n_shakes, tilt_deg)
     pile.set_drag(False)
@@ -692,8 +861,11 @@ def generate_packing(
     meta = {
         "generator": "hairbrush_env.studies.rod_pile.generate_packing",
         "seed": int(seed), "jostle": bool(jostle), "batch_size": int(batch_size), "friction": float(friction),
+        "freeze_depth": None if freeze_depth is None else float(freeze_depth),
+        "terminal_speed": float(terminal_speed), "max_frozen": max_frozen, "placement": placement,
         "length": float(length), "contact_pairs": pairs.tolist(),
         "lost_rods": int(np.sum(ep[:, :, 2].min(axis=1) < -diameter)),
+        "wall_time_s": time.perf_counter() - t_wall,
     }  # fmt: skip
     return Packing.from_endpoints(ep, diameter, cdia, meta)
 
@@ -771,7 +943,9 @@ class CompressionResult:
     snapshots : dict[float, Packing]
         Packings at the requested strains (first loading branch).
     final : Packing
-        Pile after the last unloading.
+        Pile after the last unloading (``None`` when loaded from a file).
+    cycle_strain_max : (cycles,) ndarray
+        Maximum strain of each cycle (constant for repeated cycles, Fig. 4.2d; increasing for Fig. 4.6).
     """
 
     strain: list
@@ -782,7 +956,26 @@ class CompressionResult:
     h0: float
     weight: float
     snapshots: dict
-    final: Packing
+    final: Packing | None
+    cycle_strain_max: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def softening_fit(self) -> tuple[float, float]:
+        """Least-squares fit max_load ≈ a + b ln(cycle) over all cycles (the thesis's logarithmic softening,
+        Fig. 4.2d inset): returns (a [N], b [N per e-fold of cycles]); b < 0 means softening. Needs ≥ 2 cycles."""
+        if len(self.max_load) < 2:
+            raise ValueError("cycles: the softening fit needs at least 2 cycles")
+        x = np.log(np.arange(1, len(self.max_load) + 1))
+        b, a = np.polyfit(x, self.max_load, 1)
+        return float(a), float(b)
+
+    def reload_load_at_previous_max(self) -> np.ndarray:
+        """For cycles k ≥ 2: the load on loading branch k at the previous cycle's maximum strain (Mullins effect,
+        Fig. 4.6: below that cycle's maximum load if the pile softened). ``nan`` for the first cycle."""
+        out = np.full(len(self.strain), np.nan)
+        for k in range(1, len(self.strain)):
+            s, f, lo = self.strain[k], self.load[k], self.loading[k]
+            out[k] = float(np.interp(self.cycle_strain_max[k - 1], s[lo], f[lo]))
+        return out
 
     def save(self, path: str | Path) -> Path:
         arrays = {}
@@ -790,8 +983,22 @@ class CompressionResult:
             arrays[f"strain_{c}"], arrays[f"load_{c}"], arrays[f"loading_{c}"] = s, f, lo
         with atomic_path(path) as tmp, open(tmp, "wb") as fh:
             np.savez_compressed(fh, max_load=self.max_load, dissipated=self.dissipated, h0=self.h0,
-                                weight=self.weight, cycles=len(self.strain), **arrays)  # fmt: skip
+                                weight=self.weight, cycles=len(self.strain),
+                                cycle_strain_max=self.cycle_strain_max, **arrays)  # fmt: skip
         return Path(path)
+
+    @classmethod
+    def load_file(cls, path: str | Path) -> CompressionResult:
+        """Read :meth:`save` output (without the packings)."""
+        p = Path(path)
+        if not p.exists():
+            raise ValueError(f"path: compression file not found: {p}")
+        with np.load(p, allow_pickle=False) as z:
+            n = int(z["cycles"])
+            csm = z["cycle_strain_max"] if "cycle_strain_max" in z else np.array([z["strain_0"].max()] * n)
+            return cls([z[f"strain_{c}"] for c in range(n)], [z[f"load_{c}"] for c in range(n)],
+                       [z[f"loading_{c}"] for c in range(n)], z["max_load"], z["dissipated"], float(z["h0"]),
+                       float(z["weight"]), {}, None, np.asarray(csm, float))  # fmt: skip
 
 
 def _check_straight(packing: Packing) -> None:
@@ -807,6 +1014,7 @@ def compress(
     cycles: int = 1,
     rate: float | None = None,
     *,
+    strain_schedule: Sequence[float] | None = None,
     snapshot_strains: Sequence[float] = (),
     friction: float | None = None,
     samples_per_cycle: int = 200,
@@ -825,18 +1033,27 @@ def compress(
     rate : float, optional
         Strain rate [1/s]. Default: piston speed 0.1 √(g d) (0.01 d per step), slow compared with free fall
         over a diameter, i.e. quasi-static.
+    strain_schedule : sequence of float, optional
+        Maximum strain of each cycle (overrides ``strain_max`` and ``cycles``). Fig. 4.6 protocol:
+        ``np.arange(0.06, 0.301, 0.03)`` — cycles of increasing amplitude, to compare with one cycle to 0.30.
     snapshot_strains : sequence of float
-        Strains (≤ strain_max) at which to return the packing on the first loading branch.
+        Strains (≤ the first cycle's maximum) at which to return the packing on the first loading branch.
     """
     from tqdm import tqdm
 
     _check_straight(packing)
-    if not 0 < strain_max < 1:
-        raise ValueError(f"strain_max: must be in (0, 1), got {strain_max!r}")
-    if cycles < 1:
-        raise ValueError(f"cycles: must be ≥ 1, got {cycles!r}")
+    if strain_schedule is None:
+        if not 0 < strain_max < 1:
+            raise ValueError(f"strain_max: must be in (0, 1), got {strain_max!r}")
+        if cycles < 1:
+            raise ValueError(f"cycles: must be ≥ 1, got {cycles!r}")
+        schedule = np.full(int(cycles), float(strain_max))
+    else:
+        schedule = np.asarray(strain_schedule, dtype=float).ravel()
+        if schedule.size < 1 or not np.all((schedule > 0) & (schedule < 1)):
+            raise ValueError(f"strain_schedule: need ≥ 1 strains in (0, 1), got {list(schedule)}")
     snaps_req = sorted(float(s) for s in snapshot_strains)
-    if any(not 0 <= s <= strain_max for s in snaps_req):
+    if any(not 0 <= s <= schedule[0] for s in snaps_req):
         raise ValueError(f"snapshot_strains: must lie in [0, strain_max], got {snaps_req}")
     ep = packing.endpoints
     pos, quat, length = _poses_from_endpoints(ep)
@@ -852,16 +1069,16 @@ def compress(
     if not speed > 0:
         raise ValueError(f"rate: must be > 0, got {rate!r}")
     dz_step = speed * sp.dt
-    travel = z_start - (1 - strain_max) * h0
-    n_half = max(math.ceil(travel / dz_step), 2)
-    every = max(n_half // samples_per_cycle, 1)
+    travels = [z_start - (1 - e) * h0 for e in schedule]
+    n_halves = [max(math.ceil(tr / dz_step), 2) for tr in travels]
     piston_mask = np.zeros(pile.model.ngeom, bool)
     piston_mask[pile.piston_geom] = True
     data = pile.data
     strains, loads, loadings, snaps = [], [], [], {}
     pending = list(snaps_req)
-    with tqdm(total=cycles * 2 * n_half, desc="compressing", unit="step", disable=not progress) as bar:
-        for c in range(cycles):
+    with tqdm(total=2 * sum(n_halves), desc="compressing", unit="step", disable=not progress) as bar:
+        for c, (travel, n_half) in enumerate(zip(travels, n_halves, strict=True)):
+            every = max(n_half // samples_per_cycle, 1)
             s_list, f_list, l_list = [], [], []
             for branch in (0, 1):
                 for k in range(n_half + 1):
@@ -877,7 +1094,7 @@ def compress(
                     while c == 0 and branch == 0 and pending and eps >= pending[0] - 1e-12:
                         snaps[pending.pop(0)] = _snapshot(pile, packing, eps)
                     if k % 200 == 0:
-                        bar.update(min(200, 2 * n_half))
+                        bar.update(min(200, n_half))
             strains.append(np.array(s_list))
             loads.append(np.array(f_list))
             loadings.append(np.array(l_list))
@@ -888,7 +1105,7 @@ def compress(
     pile.settle(max_time=0.5 * math.sqrt(length / GRAVITY))
     final = _snapshot(pile, packing, 0.0)
     return CompressionResult(strains, loads, loadings, max_load, dissipated, h0, packing.n_rods * sp.mass * GRAVITY,
-                             snaps, final)  # fmt: skip
+                             snaps, final, schedule)  # fmt: skip
 
 
 def _snapshot(pile: _Pile, packing: Packing, strain: float) -> Packing:
@@ -919,9 +1136,18 @@ class TensionResult:
     lifted_weight : (k,) ndarray
         Weight of the lifted part [N]: glued top rods plus free rods that rose by more than half the plate lift.
     energy : float
-        Disentanglement energy ∫ (load − lifted_weight) dz [J] (the blue area of Fig. 5.3b).
+        Disentanglement energy ∫ (load − lifted_weight) dz [J] from 0 to the separation lift (to the end of the
+        run if the parts never separated) — the blue area of Fig. 5.3b.
     separation : float
-        Plate lift at which load − lifted weight last exceeded 5 % of its peak [m] (Fig. 5.3c), nan if never.
+        Plate lift at which the top and bottom parts separated [m] (Fig. 5.3c), ``nan`` if they had not separated
+        by the maximum lift. Separation: the contact network no longer connects any rod of the lifted part (glued
+        top rods and the free rods touching them, transitively) to the bottom part (glued bottom rods, the floor
+        and the free rods touching them), and stays so for a further lift of 2 d.
+    separated : bool
+        Whether the parts separated before the maximum lift.
+    hanging_weight : float
+        Weight [N] of the part hanging from the plate at separation (glued top rods + free rods connected to them),
+        which the load converges to (``nan`` if not separated).
     """
 
     displacement: np.ndarray
@@ -932,16 +1158,29 @@ class TensionResult:
     separation: float
     n_glued_top: int
     n_glued_bottom: int
+    separated: bool = False
+    hanging_weight: float = float("nan")
+
+
+def _components(n: int, pairs: np.ndarray) -> np.ndarray:
+    """Connected-component label of each of ``n`` nodes given undirected edges ``pairs`` (k, 2)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    pairs = np.asarray(pairs, dtype=np.int64).reshape(-1, 2)
+    adj = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    return connected_components(adj, directed=False)[1]
 
 
 def tension(
     packing: Packing,
     *,
     glue_depth: float = 0.15,
-    strain_max: float = 1.0,
+    strain_max: float = 2.0,
     rate: float | None = None,
     wall_friction: float = 0.0,
     samples: int = 300,
+    stop_at_separation: bool = True,
     progress: bool = True,
 ) -> TensionResult:
     """Glue the top and bottom layers and pull them apart (thesis §4.5.2 tension test, Fig. 5.3).
@@ -949,7 +1188,9 @@ def tension(
     Rods reaching into the bottom ``glue_depth·H`` are fixed to the floor (epoxy in a petri dish); rods reaching
     into the top ``glue_depth·H`` (and not glued at the bottom) are fixed to a plate that rises at constant speed.
     The container walls stay to hold the loose middle in place but are frictionless by default (the experiment
-    pulls a free-standing pile; walls with friction would carry load).
+    pulls a free-standing pile; walls with friction would carry load). The plate rises until the parts separate
+    (see :class:`TensionResult`) plus a further 0.05 H to record the load settling on the hanging weight, or up to
+    the maximum lift ``strain_max·H`` (default 2 H).
     """
     from tqdm import tqdm
 
@@ -977,52 +1218,102 @@ def tension(
     mrod = sp.mass * GRAVITY
     w_top = top.sum() * mrod
     speed = 0.1 * math.sqrt(GRAVITY * d) if rate is None else rate * h
+    if not speed > 0:
+        raise ValueError(f"rate: must be > 0, got {rate!r}")
+    dz_step = speed * sp.dt
     travel = strain_max * h
-    nsteps = max(math.ceil(travel / (speed * sp.dt)), 2)
-    every = max(nsteps // samples, 1)
+    nsteps = max(math.ceil(travel / dz_step), 2)
+    every = max(min(nsteps // samples, round(0.5 * d / dz_step)), 1)  # sample at least every d/2 of lift
     data = pile.data
     mocap_top = pile.model.body_mocapid[pile.mj.mj_name2id(pile.model, pile.mj.mjtObj.mjOBJ_BODY, "top")]
     z0_free = data.xpos[pile.body_of_rod[pile.free], 2].copy()
+    n = packing.n_rods
+    # graph nodes: rods 0..n-1, the plate n, the floor (with the glued bottom rods) n + 1
+    plate_edges = np.stack([np.flatnonzero(top), np.full(top.sum(), n)], axis=1)
+    floor_edges = np.stack([np.flatnonzero(bottom), np.full(bottom.sum(), n + 1)], axis=1)
+    floor_geom = pile.floor_geom
     disp, load, lifted = [], [], []
+    sep_at, hanging, stop_at = math.nan, math.nan, nsteps
     with tqdm(total=nsteps, desc="pulling apart", unit="step", disable=not progress) as bar:
-        for k in range(nsteps + 1):
-            u = travel * k / nsteps
+        k = 0
+        while k <= stop_at:
+            u = dz_step * k
             data.mocap_pos[mocap_top] = [0.0, 0.0, u]
             pile.step()
-            if k % every == 0 or k == nsteps:
+            if k % every == 0 or k == stop_at:
                 rise = data.xpos[pile.body_of_rod[pile.free], 2] - z0_free
                 n_lift = int(np.sum(rise > 0.5 * u)) if u > 2 * d else 0
                 disp.append(u)
                 load.append(w_top - pile.geom_forces(top_mask)[2])
                 lifted.append(w_top + n_lift * mrod)
+                if k < stop_at:
+                    nc = data.ncon
+                    g1, g2 = data.contact.geom1[:nc], data.contact.geom2[:nc]
+                    touch = data.contact.dist[:nc] < sp.contact_tol * d
+                    at_floor = touch & ((g1 == floor_geom) | (g2 == floor_geom))
+                    on_floor = pile.geom_rod[np.where(g1 == floor_geom, g2, g1)[at_floor]]
+                    on_floor = on_floor[on_floor >= 0]
+                    edges = np.concatenate([pile.contact_pairs(), plate_edges, floor_edges,
+                                            np.stack([on_floor, np.full(len(on_floor), n + 1)], axis=1)])  # fmt: skip
+                    lab = _components(n + 2, edges)
+                    connected = lab[n] == lab[n + 1]
+                    if connected:
+                        sep_at, hanging = math.nan, math.nan
+                        stop_at = nsteps
+                    elif math.isnan(sep_at) and u > 0:
+                        sep_at = u
+                        hanging = float(np.sum(lab[:n] == lab[n]) * mrod)
+                        if stop_at_separation:
+                            stop_at = min(nsteps, k + math.ceil(max(2 * d, 0.05 * h) / dz_step))
             if k % 200 == 0:
                 bar.update(min(200, nsteps))
+            k += 1
     disp_a, load_a, lift_a = np.array(disp), np.array(load), np.array(lifted)
     excess = load_a - lift_a
-    energy = float(np.trapezoid(excess, disp_a))
-    peak = excess.max()
-    above = np.flatnonzero(excess > 0.05 * peak) if peak > 0 else np.array([], dtype=int)
-    sep = float(disp_a[above[-1]]) if len(above) and above[-1] < len(disp_a) - 1 else float("nan")
-    return TensionResult(disp_a, disp_a / h, load_a, lift_a, energy, sep, int(top.sum()), int(bottom.sum()))
+    sep_lift = sep_at if (not math.isnan(sep_at) and disp_a[-1] >= sep_at + 2 * d - 1e-12) else math.nan
+    upto = disp_a <= (sep_lift if not math.isnan(sep_lift) else disp_a[-1]) + 1e-12
+    energy = float(np.trapezoid(excess[upto], disp_a[upto]))
+    separated = not math.isnan(sep_lift)
+    return TensionResult(disp_a, disp_a / h, load_a, lift_a, energy, sep_lift, int(top.sum()), int(bottom.sum()),
+                         separated, hanging if separated else math.nan)  # fmt: skip
 
 
 # ------------------------------------------------------------------------------------------------ figures
 
 
-def plot_compression(result: CompressionResult, path: str | Path) -> Path:
-    """Load–strain loops of every cycle (Fig. 4.2e / 4.6) and the maximum load per cycle (Fig. 4.2d inset)."""
+def plot_compression(
+    result: CompressionResult, path: str | Path, *, single: CompressionResult | None = None
+) -> Path:
+    """Load–strain loops of every cycle (Fig. 4.2e / 4.6) and the maximum load per cycle (Fig. 4.2d inset).
+
+    ``single``: a one-cycle test to the largest strain on a fresh copy of the pile, drawn in red (Fig. 4.6).
+    """
     from ..viz import PALETTE, new_figure, save_figure
 
     fig, axes = new_figure(2, 1, width=4.6, height=3.6)
     ax, ax2 = axes[0]
     for c, (s, f) in enumerate(zip(result.strain, result.load, strict=True)):
-        ax.plot(s, f, color=PALETTE[c % len(PALETTE)], lw=1.2, label=f"cycle {c + 1}")
+        col = PALETTE[0] if single is not None else PALETTE[c % len(PALETTE)]
+        ax.plot(s, f, color=col, lw=1.0, label=f"cycle {c + 1}" if single is None else None)
+    if single is not None:
+        ax.plot(single.strain[0], single.load[0], color=PALETTE[1], lw=1.4,
+                label=f"single cycle to ε = {single.cycle_strain_max[0]:.2g}")  # fmt: skip
+        ax.plot([], [], color=PALETTE[0], label="cycles of increasing ε_max")
     ax.axhline(result.weight, color="0.5", ls=":", lw=1, label="pile weight")
     ax.set(xlabel="strain ε", ylabel="piston load [N]", title="compression cycles")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7)
     cyc = np.arange(1, len(result.max_load) + 1)
-    ax2.plot(cyc, result.max_load, "o-", color=PALETTE[0])
-    ax2.set(xlabel="cycle", ylabel="maximum load [N]", title="softening over cycles")
+    ax2.plot(cyc, result.max_load, "o-", color=PALETTE[0], label="maximum load")
+    varying = len(result.cycle_strain_max) > 1 and np.ptp(result.cycle_strain_max) > 0
+    if len(cyc) >= 2 and not varying:
+        a, b = result.softening_fit()
+        x = np.linspace(1, cyc[-1], 50)
+        ax2.plot(x, a + b * np.log(x), ":", color=PALETTE[1], label=f"{a:.3g} {b:+.3g} ln(cycle)")
+    if varying:
+        reload = result.reload_load_at_previous_max()
+        ax2.plot(cyc, reload, "s", mfc="none", color=PALETTE[1], label="reload at previous ε_max")
+    ax2.set(xlabel="cycle", ylabel="load [N]", title="softening over cycles")
+    ax2.legend(fontsize=7)
     save_figure(fig, path)
     return Path(path)
 
@@ -1036,8 +1327,12 @@ def plot_tension(result: TensionResult, path: str | Path) -> Path:
     x = result.displacement * 1e3
     ax.plot(x, result.load, color=PALETTE[0], label="load")
     ax.plot(x, result.lifted_weight, color=PALETTE[1], label="weight of lifted part")
-    ax.fill_between(x, result.lifted_weight, result.load, where=result.load > result.lifted_weight,
+    upto = x <= (result.separation * 1e3 if result.separated else x[-1]) + 1e-9
+    ax.fill_between(x[upto], result.lifted_weight[upto], result.load[upto],
+                    where=result.load[upto] > result.lifted_weight[upto],
                     color=PALETTE[5], alpha=0.4, label=f"E = {result.energy * 1e3:.3g} mJ")  # fmt: skip
+    if result.separated:
+        ax.axvline(result.separation * 1e3, color="0.4", ls="--", lw=1, label="separation")
     ax.set(xlabel="plate lift [mm]", ylabel="force [N]", title="pulling glued layers apart (Fig. 5.3b)")
     ax.legend(fontsize=8)
     save_figure(fig, path)
