@@ -8,15 +8,13 @@ them.
 
 from __future__ import annotations
 
-import csv
-import io
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .io import write_text
+from .io import read_csv_rows, write_csv_rows, write_text
 
 COLUMNS = [
     "wig",
@@ -35,33 +33,21 @@ COLUMNS = [
 ]
 
 
-def _to_csv(rows: Sequence[dict[str, Any]]) -> str:
-    buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=COLUMNS, extrasaction="ignore", lineterminator="\n")
-    writer.writeheader()
-    writer.writerows(rows)
-    return buf.getvalue()
-
-
 def read_results(path: str | Path) -> list[dict[str, Any]]:
     """Rows of a results CSV with numeric columns converted."""
-    rows = []
-    with open(path, newline="") as fh:
-        for row in csv.DictReader(fh):
-            for key in (
-                "curliness",
-                "max_force",
-                "time",
-                "final_entanglement",
-                "entanglement_initial",
-                "total_reward",
-            ):
-                row[key] = float(row[key])
-            for key in ("episode", "seed", "strokes", "pain_violations"):
-                row[key] = int(row[key])
-            row["diverged"] = row["diverged"] == "True"
-            rows.append(row)
-    return rows
+    return read_csv_rows(
+        path,
+        floats=(
+            "curliness",
+            "max_force",
+            "time",
+            "final_entanglement",
+            "entanglement_initial",
+            "total_reward",
+        ),
+        ints=("episode", "seed", "strokes", "pain_violations"),
+        bools=("diverged",),
+    )
 
 
 def run_grid(
@@ -98,7 +84,7 @@ def run_grid(
             policy = make_policy(policy_name, env)
             log = run_episode(env, policy, episode=ep, seed=seed + ep, policy_name=policy_name)
             rows.append(log.summary())
-            write_text(csv_path, _to_csv(rows))  # after every episode: an interrupt loses at most one
+            write_csv_rows(csv_path, rows, COLUMNS)  # after every episode: an interrupt loses at most one
             bar.set_postfix(wig=wig, policy=policy_name, f_max=f"{log.max_force:.1f}")
             bar.update(1)
     finally:
@@ -106,7 +92,7 @@ def run_grid(
         for env in envs.values():
             env.close()
     rows.sort(key=lambda r: (r["curliness"], r["wig"], r["policy"], r["episode"]))
-    write_text(csv_path, _to_csv(rows))
+    write_csv_rows(csv_path, rows, COLUMNS)
     write_text(out / "summary.md", summary_markdown(rows))
     plot_grid(rows, out / "max_force_vs_curliness.png", out / "time_vs_curliness.png")
     return rows

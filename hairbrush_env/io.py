@@ -4,10 +4,12 @@
 from __future__ import annotations
 
 import contextlib
+import csv
+import io
 import json
 import os
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -47,3 +49,32 @@ def write_json(path: str | os.PathLike[str], obj: Any) -> Path:
         raise TypeError(f"not JSON serializable: {type(o).__name__}")
 
     return write_text(path, json.dumps(obj, indent=2, default=default) + "\n")
+
+
+def write_csv_rows(
+    path: str | os.PathLike[str], rows: Iterable[dict[str, Any]], columns: Sequence[str]
+) -> Path:
+    """Atomically write ``rows`` (dicts; keys outside ``columns`` are ignored) as a CSV with a header."""
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=list(columns), extrasaction="ignore", lineterminator="\n")
+    writer.writeheader()
+    writer.writerows(rows)
+    return write_text(path, buf.getvalue())
+
+
+def read_csv_rows(
+    path: str | os.PathLike[str],
+    *,
+    floats: Sequence[str] = (),
+    ints: Sequence[str] = (),
+    bools: Sequence[str] = (),
+) -> list[dict[str, Any]]:
+    """Rows of a CSV written by :func:`write_csv_rows`, with the named columns converted back."""
+    rows = []
+    with open(path, newline="") as fh:
+        for row in csv.DictReader(fh):
+            row.update({k: float(row[k]) for k in floats})
+            row.update({k: int(row[k]) for k in ints})
+            row.update({k: row[k] == "True" for k in bools})
+            rows.append(row)
+    return rows

@@ -14,8 +14,6 @@ rerun skips them.
 
 from __future__ import annotations
 
-import csv
-import io
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -23,30 +21,19 @@ from typing import Any
 
 import numpy as np
 
-from .io import write_text
+from .io import read_csv_rows, write_csv_rows, write_text
 
 COLUMNS = ["wig", "curliness", "brush_length", "speed", "seed", "max_force", "sim_time", "diverged"]
 
 
-def _to_csv(rows: Sequence[dict[str, Any]]) -> str:
-    buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=COLUMNS, extrasaction="ignore", lineterminator="\n")
-    writer.writeheader()
-    writer.writerows(rows)
-    return buf.getvalue()
-
-
 def read_strokes(path: str | Path) -> list[dict[str, Any]]:
     """Rows of a ``strokes.csv`` with numeric columns converted."""
-    rows = []
-    with open(path, newline="") as fh:
-        for row in csv.DictReader(fh):
-            for key in ("curliness", "brush_length", "speed", "max_force", "sim_time"):
-                row[key] = float(row[key])
-            row["seed"] = int(row["seed"])
-            row["diverged"] = row["diverged"] == "True"
-            rows.append(row)
-    return rows
+    return read_csv_rows(
+        path,
+        floats=("curliness", "brush_length", "speed", "max_force", "sim_time"),
+        ints=("seed",),
+        bools=("diverged",),
+    )
 
 
 def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[float]:
@@ -137,7 +124,7 @@ def measure_strokes(
                 }
             )
             if csv_path is not None:
-                write_text(csv_path, _to_csv(rows))  # after every stroke: an interrupt loses at most one
+                write_csv_rows(csv_path, rows, COLUMNS)  # after every stroke: an interrupt loses at most one
             bar.set_postfix(wig=wig, b_l=b_l, v=speed, f_max=f"{res.max_force:.1f}")
             bar.update(1)
     finally:
@@ -146,7 +133,7 @@ def measure_strokes(
             sim.close()
     rows.sort(key=lambda r: (r["curliness"], r["wig"], r["brush_length"], r["speed"], r["seed"]))
     if out is not None:
-        write_text(Path(out) / "strokes.csv", _to_csv(rows))
+        write_csv_rows(Path(out) / "strokes.csv", rows, COLUMNS)
         write_text(Path(out) / "summary.md", summary_markdown(rows))
         plot_strokes(rows, out)
     return rows

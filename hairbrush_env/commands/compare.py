@@ -5,15 +5,19 @@ from __future__ import annotations
 import argparse
 
 
+def _wig_names(text: str) -> list[str]:
+    """Comma-separated preset names, or ``all`` for every preset (straightest first)."""
+    if text == "all":
+        from ..hair import PRESETS
+
+        return list(PRESETS)
+    return [w.strip() for w in text.split(",") if w.strip()]
+
+
 def _cmd_compare(args: argparse.Namespace) -> int:
     from ..compare import run_grid, summary_markdown
 
-    if args.wigs == "all":
-        from ..hair import PRESETS
-
-        wigs = list(PRESETS)
-    else:
-        wigs = [w.strip() for w in args.wigs.split(",") if w.strip()]
+    wigs = _wig_names(args.wigs)
     policies = [p.strip() for p in args.policies.split(",") if p.strip()]
     try:
         rows = run_grid(
@@ -51,12 +55,7 @@ def _floats(text: str) -> list[float]:
 def _cmd_strokes(args: argparse.Namespace) -> int:
     from ..stroke_study import measure_strokes, summary_markdown
 
-    if args.wigs == "all":
-        from ..hair import PRESETS
-
-        wigs = list(PRESETS)
-    else:
-        wigs = [w.strip() for w in args.wigs.split(",") if w.strip()]
+    wigs = _wig_names(args.wigs)
     try:
         rows = measure_strokes(
             wigs,

@@ -1,0 +1,65 @@
+"""Comparison grid bookkeeping (:mod:`hairbrush_env.compare`): CSV round trip, resume, summary statistics."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hairbrush_env import compare
+from hairbrush_env.io import write_csv_rows
+
+
+def _row(wig: str, policy: str, episode: int, max_force: float, curliness: float = 0.5) -> dict:
+    return {
+        "wig": wig,
+        "curliness": curliness,
+        "policy": policy,
+        "episode": episode,
+        "seed": episode,
+        "max_force": max_force,
+        "time": 10.0 + episode,
+        "strokes": 3 + episode,
+        "pain_violations": int(max_force >= 10.0),
+        "final_entanglement": 1.5,
+        "entanglement_initial": 4.0,
+        "total_reward": -0.25,
+        "diverged": False,
+        "not_a_column": "dropped",
+    }
+
+
+def test_results_csv_round_trip(tmp_path) -> None:
+    rows = [_row("curly", "naive", 0, 12.5), _row("curly", "naive", 1, 8.0)]
+    write_csv_rows(tmp_path / "results.csv", rows, compare.COLUMNS)
+    back = compare.read_results(tmp_path / "results.csv")
+    assert [set(r) for r in back] == [set(compare.COLUMNS)] * 2
+    for r, b in zip(rows, back, strict=True):
+        assert all(b[k] == r[k] for k in compare.COLUMNS)
+        assert isinstance(b["episode"], int) and isinstance(b["max_force"], float) and b["diverged"] is False
+
+
+def test_finished_cells_are_not_rerun(tmp_path) -> None:
+    rows = [_row("curly", "naive", 0, 12.5)]
+    write_csv_rows(tmp_path / "results.csv", rows, compare.COLUMNS)
+    # every requested cell is already in results.csv, so no env is made and nothing is simulated
+    out = compare.run_grid(["curly"], ["naive"], episodes=1, seed=0, out=tmp_path, progress=False)
+    assert len(out) == 1 and out[0]["max_force"] == 12.5
+    assert (tmp_path / "summary.md").read_text().count("| curly |") == 1
+    assert (tmp_path / "max_force_vs_curliness.png").stat().st_size > 0
+
+
+def test_summary_mean_and_std() -> None:
+    rows = [_row("curly", "naive", e, f) for e, f in enumerate((12.0, 8.0, 10.0))]
+    rows.append(_row("straight", "naive", 0, 1.0, curliness=0.0))
+    table = compare.summarize(rows)
+    assert [e["wig"] for e in table] == ["straight", "curly"]  # sorted by curliness
+    curly = table[1]
+    assert curly["n"] == 3
+    assert curly["max_force"][0] == pytest.approx(10.0)
+    assert curly["max_force"][1] == pytest.approx(np.std([12.0, 8.0, 10.0], ddof=1))
+    assert curly["pain_violations"][0] == pytest.approx(2 / 3)
+
+
+def test_bad_episode_count(tmp_path) -> None:
+    with pytest.raises(ValueError, match="episodes"):
+        compare.run_grid(["curly"], ["naive"], episodes=0, seed=0, out=tmp_path, progress=False)
