@@ -34,10 +34,10 @@ stroke read only 0.24 N. ``κ = 50`` was chosen from the measured force table (R
 Discretization and speed: wisps get :attr:`WigConfig.edges_per_turn` = 5 edges per curl turn, capped at
 ``max_edges`` = 16 per strand (≥ 4 per turn for every preset: enough for the link to equal the number of turns and for
 contact, not for < 5 % spring stiffness — see :mod:`hairbrush_env.rods`). At a 10 ms step the 24-strand default
-wig alone would run 2.4× real time on one core; the 1 ms contact step that keeps strands from passing through each
+wig alone would run 2.3× real time on one core; the 1 ms contact step that keeps strands from passing through each
 other caps it at ~0.2× (README "Wigs and scene", *Speed*). Hanging length is therefore ``≤ 4 P`` for curled presets: the
 curly presets use large curls (R = 12 mm) so that they hang 6–8 cm and a stroke from 2 cm below the scalp covers
-most of them (a wisp turn stands for many real curl turns; this is the price of real time).
+most of them (a wisp turn stands for many real curl turns: the price of few rod dofs, which set the step cost).
 
 Pre-brushed state (thesis §3.4: wigs are turned upside down and shaken for 10–15 s)
 -----------------------------------------------------------------------------------
