@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
 import numpy as np
 import pytest
 
@@ -63,3 +67,26 @@ def test_summary_mean_and_std() -> None:
 def test_bad_episode_count(tmp_path) -> None:
     with pytest.raises(ValueError, match="episodes"):
         compare.run_grid(["curly"], ["naive"], episodes=0, seed=0, out=tmp_path, progress=False)
+
+
+@pytest.mark.slow
+def test_naive_hurts_on_the_curliest_wig_sigmoid_does_not(tmp_path) -> None:
+    """Thesis §3.6 (reduced to 4 strokes on the curliest preset): the naive thirds policy reaches the pain
+    threshold F_T, the sigmoid closed loop (vision R_c → eq. 3.3 → Algorithm 1) stays below it."""
+    from hairbrush_env.hair import PRESETS
+    from hairbrush_env.scene import PAIN_THRESHOLD
+
+    curliest = list(PRESETS)[-1]
+    rows = compare.run_grid(
+        [curliest],
+        ["naive", "sigmoid"],
+        episodes=1,
+        seed=0,
+        out=tmp_path,
+        env_kwargs={"max_episode_steps": 4},
+        progress=False,
+    )
+    by_policy = {r["policy"]: r for r in rows}
+    assert not any(r["diverged"] for r in rows)
+    assert by_policy["naive"]["max_force"] >= PAIN_THRESHOLD and by_policy["naive"]["pain_violations"] >= 1
+    assert by_policy["sigmoid"]["max_force"] < PAIN_THRESHOLD and by_policy["sigmoid"]["pain_violations"] == 0
