@@ -655,10 +655,27 @@ class PassThroughMonitor:
     the largest change of any entwined pair's link between two checks.
     """
 
+    #: Largest allowed change of an entwined pair's link between two checks (issue #3).
+    MAX_LINK_JUMP = 0.5
+
     def __init__(self, sim: BrushingSim) -> None:
         self.hair_hair = self.hair_bristle = math.inf
         self.max_link_jump = 0.0
         self._lk = sim.pair_links()
+        # "Passing through" = centerlines closer than half the sum of the two radii.
+        r = sim.wig.strand_radius
+        bristle = float(sim.model.geom_size[sim._bristle_geoms, 0].min())
+        self.hair_hair_limit = r
+        self.hair_bristle_limit = 0.5 * (r + bristle)
+
+    @property
+    def passed(self) -> bool:
+        """True while no pass-through has been seen: both distances above their limits, link jumps ≤ 0.5."""
+        return (
+            self.hair_hair > self.hair_hair_limit
+            and self.hair_bristle > self.hair_bristle_limit
+            and self.max_link_jump <= self.MAX_LINK_JUMP
+        )
 
     def update(self, sim: BrushingSim) -> None:
         from .topology._kernels import min_segment_distance

@@ -151,6 +151,15 @@ def test_no_pass_through_reduced(sim: scene.BrushingSim) -> None:
     assert jump <= 0.5
 
 
+def test_pass_through_limits_follow_the_model(sim: scene.BrushingSim) -> None:
+    mon = scene.PassThroughMonitor(sim)
+    assert mon.hair_hair_limit == pytest.approx(sim.wig.strand_radius)
+    assert mon.hair_bristle_limit == pytest.approx(0.5 * (sim.wig.strand_radius + BRISTLE_RADIUS))
+    assert mon.passed  # nothing seen yet
+    mon.hair_hair = 0.9 * mon.hair_hair_limit
+    assert not mon.passed
+
+
 @pytest.mark.slow
 def test_no_pass_through_full_stroke_curliest() -> None:
     s = scene.BrushingSim(scene.SceneConfig(wig=list(hair.PRESETS)[-1]))
