@@ -8,6 +8,8 @@ from pathlib import Path
 
 
 def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
+    import numpy as np
+
     from hairbrush_env.io import write_json, write_text
 
     from .vision_calibration import plot_calibration, rank_correlation, render_rows, rows_to_csv
@@ -15,16 +17,44 @@ def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
     presets = None if args.wigs == "all" else [w.strip() for w in args.wigs.split(",") if w.strip()]
     seeds = [int(s) for s in args.seeds.split(",")]
     try:
-        rows = render_rows(presets, seeds=seeds, jitters=args.jitters, progress=not args.quiet)
+        rows = render_rows(
+            presets,
+            seeds=seeds,
+            jitters=args.jitters,
+            width=args.width,
+            height=args.height,
+            progress=not args.quiet,
+        )
     except ValueError as exc:
         raise SystemExit(f"hairbrush vision calibrate: {exc}") from exc
     out = Path(args.out)
-    rho = rank_correlation(rows)
+    rho = rank_correlation(rows, "rc")
+    rho_ratio = rank_correlation(rows, "ratio")
+    per_wig = {}
+    for r in rows:
+        per_wig.setdefault(r["wig"], {"rp": r["rp"], "rc": [], "ratio": []})
+        per_wig[r["wig"]]["rc"].append(r["rc"])
+        per_wig[r["wig"]]["ratio"].append(r["ratio"])
+    means = {
+        w: {"rp": v["rp"], "rc": float(np.mean(v["rc"])), "ratio": float(np.mean(v["ratio"]))}
+        for w, v in per_wig.items()
+    }
     write_text(out / "vision_calibration.csv", rows_to_csv(rows))
-    write_json(out / "vision_calibration.json", {"spearman_rho": rho, "n_images": len(rows)})
+    write_json(
+        out / "vision_calibration.json",
+        {
+            "spearman_rho": rho,
+            "spearman_rho_unclipped": rho_ratio,
+            "mean_per_wig": means,
+            "n_images": len(rows),
+            "resolution": [args.width, args.height],
+        },
+    )
     plot_calibration(rows, out / "vision_calibration.png")
-    for cond, r in rho.items():
-        print(f"Spearman rho (R_c vs R/P), {cond}: {r:.3f}")
+    for w, v in means.items():
+        print(f"{w:12s} R/P {v['rp']:.2f}  R_c {v['rc']:.3f}  unclipped {v['ratio']:.3f}")
+    for cond in rho:
+        print(f"Spearman rho vs R/P, {cond}: R_c {rho[cond]:.3f}, unclipped {rho_ratio[cond]:.3f}")
     print(f"wrote {out / 'vision_calibration.png'}, .csv, .json")
     return 0
 
@@ -38,6 +68,8 @@ def register_vision(sub: argparse._SubParsersAction) -> None:
     cal.add_argument("--wigs", default="all", help="comma-separated presets or 'all'")
     cal.add_argument("--seeds", default="0,1,2", help="pre-brushed states per wig (comma-separated)")
     cal.add_argument("--jitters", type=int, default=3, help="camera placements per state (first is nominal)")
+    cal.add_argument("--width", type=int, default=640, help="webcam image width [px]")
+    cal.add_argument("--height", type=int, default=480, help="webcam image height [px]")
     cal.add_argument("--out", default="runs/vision")
     cal.add_argument("--quiet", action="store_true")
     cal.set_defaults(func=_cmd_vision_calibrate)

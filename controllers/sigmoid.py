@@ -8,6 +8,7 @@ needs the midpoint at +0.5: ``b_l0 = 1 / (1 + exp(k (R_c − c)))`` with c = 0.5
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -15,6 +16,8 @@ import numpy as np
 
 from .vision import curliness
 
+#: Smallest webcam image height at which R_c ranks the curled presets (README "Vision curliness").
+MIN_IMAGE_HEIGHT = 480
 #: Steepness fitted on real wigs in the thesis (Fig. 3.9).
 THESIS_K = 8.5
 #: Steepness fitted in simulation by ``scripts/fit_sigmoid.py`` (see README); the default of the policy.
@@ -91,7 +94,16 @@ class SigmoidPolicy:
 
     def _estimate(self, obs: dict) -> float:
         if "image" in obs:
-            return curliness(obs["image"], roi="auto")
+            image = np.asarray(obs["image"])
+            if image.shape[0] < MIN_IMAGE_HEIGHT:
+                warnings.warn(
+                    f"SigmoidPolicy: a {image.shape[1]}x{image.shape[0]} webcam image blurs tight coils and "
+                    "lowers their R_c (README, 'Vision curliness'); make the env with width=640, height=480",
+                    stacklevel=3,
+                )
+            # crop to the hair as the thesis does; the env knows where its webcam sees the hair
+            roi = self._env.hair_roi() if hasattr(self._env, "hair_roi") else "auto"
+            return curliness(image, roi=roi)
         if self.curliness_hint is not None:
             return float(self.curliness_hint)
         raise ValueError(

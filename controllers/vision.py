@@ -9,14 +9,25 @@ curly hair has edges in every direction, so the y gradients approach the x gradi
 is therefore ≈ 0 for straight and → 1 for curly hair, an image-based stand-in for R/P. Eq. 3.5 prints
 |ΣG_y / ΣG_x| with *signed* gradients; summed over an image, signed gradients cancel (light-dark and dark-light
 edges have opposite signs, and the sum telescopes to boundary differences), so we sum gradient **magnitudes**.
+
+What the ratio measures. Along a thin dark curve the gradient is normal to the curve, so per unit length
+|G_x| ∝ |cos θ| and |G_y| ∝ |sin θ| (θ from the vertical). Summed along the curve, Σ|G_y| / Σ|G_x| =
+∫|dx| / ∫|dz|: horizontal over vertical travel. A helix of radius R and pitch P seen side-on projects to
+x = R cos(2πz/P), which travels 4R sideways per pitch P, so the unclipped ratio is **4 R/P** and the clipped
+R_c = min(4 R/P, 1). R_c therefore tracks R/P only up to R/P ≈ 1/4: every curlier helix reads R_c = 1, and eq. 3.5
+cannot rank such wigs among themselves. :func:`gradient_ratio` returns the unclipped value, which keeps ranking
+them as long as the image resolves the curls (``tests/controllers/test_vision.py`` checks the 4R/P law on drawn
+curves; README "Vision curliness" has the measurement on rendered wigs).
 """
 
 from __future__ import annotations
 
+import math
+
 import cv2
 import numpy as np
 
-__all__ = ["curliness", "gradient_images", "hair_roi"]
+__all__ = ["curliness", "gradient_images", "gradient_ratio", "hair_roi"]
 
 
 def _check_image(image) -> np.ndarray:
@@ -82,14 +93,10 @@ def gradient_images(image, *, roi=None) -> tuple[np.ndarray, np.ndarray]:
     return gx, gy
 
 
-def curliness(image, *, roi=None) -> float:
-    """Vision curliness R_c = Σ|G_y| / Σ|G_x| of the (cropped) image, clipped to [0, 1] (eq. 3.5).
+def gradient_ratio(image, *, roi=None) -> float:
+    """Unclipped Σ|G_y| / Σ|G_x| of the (cropped) image: 4 R/P for side-on helices (see the module docstring).
 
-    Parameters
-    ----------
-    image : H×W×3 (RGB) or H×W array
-    roi : (y0, y1, x0, x1), "auto", or None
-        Crop to the hair; ``"auto"`` uses :func:`hair_roi` with the border colour as background.
+    ``roi`` as in :func:`curliness`. A flat image (no gradients) gives 0.
     """
     if isinstance(roi, str):
         if roi != "auto":
@@ -99,5 +106,19 @@ def curliness(image, *, roi=None) -> float:
     sx = float(np.abs(gx).sum(dtype=np.float64))
     sy = float(np.abs(gy).sum(dtype=np.float64))
     if sx == 0.0:
-        return 1.0 if sy > 0.0 else 0.0
-    return float(min(sy / sx, 1.0))
+        return math.inf if sy > 0.0 else 0.0
+    return sy / sx
+
+
+def curliness(image, *, roi=None) -> float:
+    """Vision curliness R_c = Σ|G_y| / Σ|G_x| of the (cropped) image, clipped to [0, 1] (eq. 3.5).
+
+    Parameters
+    ----------
+    image : H×W×3 (RGB) or H×W array
+    roi : (y0, y1, x0, x1), "auto", or None
+        Crop to the hair. The brushing envs give the rig's crop as ``env.unwrapped.hair_roi()``; ``"auto"`` uses
+        :func:`hair_roi`, the bounding box of everything that differs from the border colour, which is the hair
+        only when nothing else is in view.
+    """
+    return float(min(gradient_ratio(image, roi=roi), 1.0))

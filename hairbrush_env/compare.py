@@ -50,6 +50,31 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
     )
 
 
+#: One env per wig and process, built on first use (building a scene takes seconds; episodes reuse it).
+_ENVS: dict[tuple[str, str], Any] = {}
+
+
+def _run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: dict[str, Any]) -> dict:
+    """One episode of the grid, in this process (also the worker function of the parallel grid)."""
+    import gymnasium as gym
+
+    from .policies import make_policy
+    from .rollout import run_episode
+
+    key = (wig, repr(sorted(env_kwargs.items())))
+    if key not in _ENVS:
+        _ENVS[key] = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", **env_kwargs)
+    env = _ENVS[key]
+    policy = make_policy(policy_name, env)
+    log = run_episode(env, policy, episode=episode, seed=seed + episode, policy_name=policy_name)
+    return log.summary()
+
+
+def _close_envs() -> None:
+    while _ENVS:
+        _ENVS.popitem()[1].close()
+
+
 def run_grid(
     wigs: Sequence[str],
     policies: Sequence[str],
@@ -58,39 +83,56 @@ def run_grid(
     seed: int,
     out: str | Path,
     env_kwargs: dict[str, Any] | None = None,
+    workers: int = 1,
     progress: bool = True,
 ) -> list[dict[str, Any]]:
-    """Run (or resume) the grid; returns all rows and writes ``out/results.csv``, ``summary.md`` and plots."""
-    import gymnasium as gym
-    from tqdm import tqdm
+    """Run (or resume) the grid; returns all rows and writes ``out/results.csv``, ``summary.md`` and plots.
 
-    from .policies import make_policy
-    from .rollout import run_episode
+    ``workers > 1`` runs episodes in that many processes (one core each; each builds its own envs).
+    """
+    from concurrent.futures import ProcessPoolExecutor, as_completed
+    from multiprocessing import get_context
+
+    from tqdm import tqdm
 
     if episodes < 1:
         raise ValueError(f"episodes: must be >= 1, got {episodes}")
+    if int(workers) != workers or workers < 1:
+        raise ValueError(f"workers: must be a positive integer, got {workers!r}")
     out = Path(out)
     csv_path = out / "results.csv"
     rows = read_results(csv_path) if csv_path.exists() else []
     done = {(r["wig"], r["policy"], r["episode"]) for r in rows}
     todo = [(w, p, e) for w in wigs for p in policies for e in range(episodes) if (w, p, e) not in done]
+    kwargs = dict(env_kwargs or {})
     bar = tqdm(total=len(todo), desc="compare", unit="episode", disable=not progress)
-    envs: dict[str, Any] = {}
+
+    def finished(row: dict) -> None:
+        rows.append(row)
+        write_csv_rows(
+            csv_path, rows, COLUMNS
+        )  # after every episode: an interrupt loses at most the running ones
+        bar.set_postfix(wig=row["wig"], policy=row["policy"], f_max=f"{row['max_force']:.1f}")
+        bar.update(1)
+
     try:
-        for wig, policy_name, ep in todo:
-            if wig not in envs:
-                envs[wig] = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", **(env_kwargs or {}))
-            env = envs[wig]
-            policy = make_policy(policy_name, env)
-            log = run_episode(env, policy, episode=ep, seed=seed + ep, policy_name=policy_name)
-            rows.append(log.summary())
-            write_csv_rows(csv_path, rows, COLUMNS)  # after every episode: an interrupt loses at most one
-            bar.set_postfix(wig=wig, policy=policy_name, f_max=f"{log.max_force:.1f}")
-            bar.update(1)
+        if workers == 1 or len(todo) <= 1:
+            for wig, policy_name, ep in todo:
+                finished(_run_cell(wig, policy_name, ep, seed, kwargs))
+        else:
+            # forkserver: workers must not inherit this process's MuJoCo/GL state
+            with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("forkserver")) as pool:
+                futures = [pool.submit(_run_cell, w, p, e, seed, kwargs) for w, p, e in todo]
+                try:
+                    for fut in as_completed(futures):
+                        finished(fut.result())
+                except BaseException:
+                    for fut in futures:
+                        fut.cancel()
+                    raise
     finally:
         bar.close()
-        for env in envs.values():
-            env.close()
+        _close_envs()
     rows.sort(key=lambda r: (r["curliness"], r["wig"], r["policy"], r["episode"]))
     write_csv_rows(csv_path, rows, COLUMNS)
     write_text(out / "summary.md", summary_markdown(rows))

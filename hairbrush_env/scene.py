@@ -12,8 +12,9 @@
   (:meth:`BrushingSim.stroke`) or 10 Hz velocity control (:meth:`BrushingSim.step_velocity`).
 
 Stroke (Algorithm 1, inner loop): the brush waits level beside the hair (bristle tips 15 mm in front of the
-wig) at the start height ``z_bottom + b_l·L`` (``b_l`` = normalized brush length measured up from the free ends,
-``L`` = hanging length measured after settling), the load cell is tared, the brush is pushed in to the brushing
+wig) at the start height ``z_bottom + b_l·L_b`` (``b_l`` = normalized brush length measured up from the free ends,
+``L_b`` = brushable length: from the settled free ends up to the highest start the brush head allows, 2 cm below
+the roots, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed in to the brushing
 depth, then pulled straight down at constant speed until its lowest bristles are below the free ends; the load
 cell is read at 10 Hz and the stroke stops as soon as a reading reaches ``F_T``. The speed is 0.1 m/s by default:
 the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
@@ -402,6 +403,21 @@ class BrushingSim:
         """Vertical extent root → lowest free end measured at the last reset [m]."""
         return self.hair_top - self.hair_bottom
 
+    @property
+    def brushable_length(self) -> float:
+        """Free ends → highest stroke start the brush head allows below the scalp (``top_z``) [m].
+
+        The normalized brush length ``b_l`` is a fraction of this span, so ``b_l = 1`` is the longest stroke the
+        brush can make. Measured against the whole hanging length instead, every ``b_l`` above
+        ``1 − clearance/L`` starts at the same clamped height: for tight_curl (L ≈ 6.4 cm) b_l = 0.67 and 1 began
+        only 2–7 mm apart and their forces differed 2× by where the bristles caught a curl (README).
+        """
+        return max(self.top_z - self.hair_bottom, 0.0)
+
+    def start_height(self, b_l: float) -> float:
+        """World height of the TCP at the start of a stroke with normalized brush length ``b_l``."""
+        return self.hair_bottom + float(b_l) * self.brushable_length
+
     def brush_position(self) -> np.ndarray:
         """World position of the brush TCP (mid-bristle)."""
         return self.data.site_xpos[self._tcp_site].copy()
@@ -521,8 +537,8 @@ class BrushingSim:
         Parameters
         ----------
         start_fraction : float
-            Normalized start height ``b_l ∈ [0, 1]``: the pull starts ``b_l·L`` above the free ends (clamped to the
-            highest TCP height the brush head allows below the scalp).
+            Normalized start height ``b_l ∈ [0, 1]``: the pull starts ``b_l·L_b`` above the free ends, ``L_b`` =
+            :attr:`brushable_length` (``b_l = 1``: the highest start the brush head allows below the scalp).
         speed : float, optional
             Pull speed [m/s]; default ``config.stroke_speed``.
         force_threshold : float
@@ -542,7 +558,7 @@ class BrushingSim:
         if rng is not None:
             self.load_cell.rng = rng
         t0 = float(self.data.time)
-        z_start = min(self.hair_bottom + start_fraction * self.hanging_length, self.top_z)
+        z_start = self.start_height(start_fraction)
         z_start = float(np.clip(z_start, _WORKSPACE_Z[0], _WORKSPACE_Z[1]))
         z_end = max(self.hair_bottom - _BRISTLE_ROW - 0.01, _WORKSPACE_Z[0])
         fast = self.config.approach_speed
@@ -623,6 +639,39 @@ class BrushingSim:
         )
 
     # --------------------------------------------------------------------------------------- rendering
+    def hair_window(
+        self, camera: str = "webcam", *, skip_root: float = 0.2, margin: int = 2
+    ) -> tuple[int, int, int, int]:
+        """Pixel box ``(y0, y1, x0, x1)`` of the hanging hair in ``camera``'s image (size of :meth:`render`).
+
+        The thesis crops the webcam image "to include only the hair" before computing R_c (§3.3): the rig fixes
+        the free ends and the webcam, so an operator draws that box once. Here it is the projection of the
+        strands' current centerlines, without the top ``skip_root`` fraction of the hanging height, where the
+        scalp plate and the head are in view; their outlines are strong horizontal/vertical edges that would
+        swamp the hair's own gradients. The box can still hold a little of the brush or plate at its edges.
+        """
+        if not 0.0 <= skip_root < 1.0:
+            raise ValueError(f"skip_root: must be in [0, 1), got {skip_root!r}")
+        m, d = self.model, self.data
+        cam = m.camera(camera).id  # KeyError names an unknown camera
+        pts = np.concatenate(self.hair_curves())
+        top, bottom = float(pts[:, 2].max()), float(pts[:, 2].min())
+        pts = pts[pts[:, 2] <= top - skip_root * (top - bottom)]
+        # camera frame: x right, y up, looking along -z
+        local = (pts - d.cam_xpos[cam]) @ d.cam_xmat[cam].reshape(3, 3)
+        depth = -local[:, 2]
+        if pts.size == 0 or np.any(depth <= 0.0):
+            raise ValueError(f"camera: {camera!r} does not see the whole hair")
+        w, h = self.config.width, self.config.height
+        f = 0.5 * h / math.tan(math.radians(float(m.cam_fovy[cam])) / 2.0)
+        u = w / 2.0 + f * local[:, 0] / depth
+        v = h / 2.0 - f * local[:, 1] / depth
+        y0, y1 = max(int(v.min()) - margin, 0), min(math.ceil(v.max()) + margin + 1, h)
+        x0, x1 = max(int(u.min()) - margin, 0), min(math.ceil(u.max()) + margin + 1, w)
+        if y1 - y0 < 3 or x1 - x0 < 3:
+            raise ValueError(f"camera: the hair is outside {camera!r}'s {w}x{h} image")
+        return y0, y1, x0, x1
+
     def render(self, camera: str = "webcam") -> np.ndarray:
         """RGB image ``(height, width, 3)`` uint8 from ``camera`` (renderer created on first use)."""
         if self._renderer is None:

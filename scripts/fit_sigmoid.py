@@ -29,14 +29,18 @@ def main() -> None:
     p.add_argument("--wigs", default="all")
     p.add_argument("--seeds", default="0,1")
     p.add_argument("--tol", type=float, default=0.05)
+    p.add_argument("--width", type=int, default=640, help="webcam image width [px] for R_c")
+    p.add_argument("--height", type=int, default=480, help="webcam image height [px]")
     p.add_argument("--out", default="runs/sigmoid")
     a = p.parse_args()
     wigs = list(PRESETS) if a.wigs == "all" else a.wigs.split(",")
     seeds = [int(s) for s in a.seeds.split(",")]
     points = []
     for wig in tqdm(wigs, desc="wigs"):
-        env = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image")
-        rc = float(np.mean([curliness(env.reset(seed=s)[0]["image"], roi="auto") for s in seeds]))
+        env = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", width=a.width, height=a.height)
+        rc = float(
+            np.mean([curliness(env.reset(seed=s)[0]["image"], roi=env.unwrapped.hair_roi()) for s in seeds])
+        )
         safe, trials = max_safe_length(env, seeds, tol=a.tol)
         points.append(SafePoint(wig, env.unwrapped.sim.curliness_true, rc, safe, trials))
         env.close()

@@ -67,6 +67,8 @@ def test_summary_mean_and_std() -> None:
 def test_bad_episode_count(tmp_path) -> None:
     with pytest.raises(ValueError, match="episodes"):
         compare.run_grid(["curly"], ["naive"], episodes=0, seed=0, out=tmp_path, progress=False)
+    with pytest.raises(ValueError, match="workers"):
+        compare.run_grid(["curly"], ["naive"], episodes=1, seed=0, out=tmp_path, workers=0, progress=False)
 
 
 @pytest.mark.slow
@@ -83,7 +85,8 @@ def test_naive_hurts_on_the_curliest_wig_sigmoid_does_not(tmp_path) -> None:
         episodes=1,
         seed=0,
         out=tmp_path,
-        env_kwargs={"max_episode_steps": 4},
+        env_kwargs={"max_episode_steps": 4, "width": 640, "height": 480},
+        workers=2,  # also exercises the process-parallel grid
         progress=False,
     )
     by_policy = {r["policy"]: r for r in rows}

@@ -21,7 +21,14 @@ def _cmd_compare(args: argparse.Namespace) -> int:
     policies = [p.strip() for p in args.policies.split(",") if p.strip()]
     try:
         rows = run_grid(
-            wigs, policies, episodes=args.episodes, seed=args.seed, out=args.out, progress=not args.quiet
+            wigs,
+            policies,
+            episodes=args.episodes,
+            seed=args.seed,
+            out=args.out,
+            env_kwargs={"width": args.width, "height": args.height},
+            workers=args.workers,
+            progress=not args.quiet,
         )
     except ValueError as exc:
         raise SystemExit(f"hairbrush compare: {exc}") from exc
@@ -41,6 +48,14 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--episodes", type=int, default=3, help="episodes per (wig, policy)")
     p.add_argument("--seed", type=int, default=0, help="episode k uses seed S + k for every policy")
     p.add_argument("--out", default="runs/compare", help="output directory (resumes an interrupted grid)")
+    p.add_argument("--workers", type=int, default=1, help="episodes run in this many processes")
+    p.add_argument(
+        "--width",
+        type=int,
+        default=640,
+        help="webcam image width [px]; the vision R_c needs ~640x480 to resolve tight coils (README)",
+    )
+    p.add_argument("--height", type=int, default=480, help="webcam image height [px]")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_compare)
 

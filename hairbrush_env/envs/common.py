@@ -163,6 +163,10 @@ class BrushEnvBase(gym.Env):
             "wig": self.sim.wig.name,
         }
 
+    def hair_roi(self) -> tuple[int, int, int, int]:
+        """Crop ``(y0, y1, x0, x1)`` of the hair in the ``image`` observation (the rig's fixed crop, thesis §3.3)."""
+        return self.sim.hair_window()
+
     def render(self):
         if self.render_mode == "rgb_array":
             return self.sim.render()

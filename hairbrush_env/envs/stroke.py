@@ -31,8 +31,9 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     wisps are entwined in homochiral pairs; strokes comb the link out through the free ends.
 
     ## Action Space
-    `Box(-1, 1, (1,), float32)`: the normalized start height b_l (the thesis's brush length, the fraction of the hair
-    length measured up from the free ends), rescaled linearly from [-1, 1] to [`min_brush_length`, 1]. Use
+    `Box(-1, 1, (1,), float32)`: the normalized start height b_l (the thesis's brush length: the fraction of the
+    brushable length measured up from the free ends; b_l = 1 starts as high as the brush head fits below the
+    scalp, `BrushingSim.brushable_length`), rescaled linearly from [-1, 1] to [`min_brush_length`, 1]. Use
     :meth:`brush_length_to_action` / :meth:`action_to_brush_length` to convert.
 
     ## Observation Space

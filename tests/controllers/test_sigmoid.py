@@ -42,3 +42,35 @@ def test_finish_rule_eq_3_4():
 def test_config_validation():
     with pytest.raises(ValueError, match="increment"):
         ClosedLoopConfig(increment=0)
+
+
+def test_policy_reads_rc_on_the_rigs_hair_crop():
+    import os
+
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    import gymnasium as gym
+
+    import hairbrush_env  # noqa: F401  (registers the envs)
+    from controllers.sigmoid import SigmoidPolicy
+    from controllers.vision import curliness, gradient_ratio
+
+    env = gym.make("HairBrush-v0", wig="curly", obs_mode="state+image", width=640, height=480)
+    try:
+        obs, _ = env.reset(seed=0)
+        policy = SigmoidPolicy(env)
+        policy.act(obs)
+        # curly: R/P = 0.5, so the side-on helix ratio 4R/P = 2 saturates the clip (controllers/vision.py)
+        assert policy.r_c == pytest.approx(curliness(obs["image"], roi=env.unwrapped.hair_roi()))
+        assert policy.r_c > 0.95
+        # the whole frame (head, pole, arm: long straight outlines) dilutes the hair's own gradients
+        roi = env.unwrapped.hair_roi()
+        assert gradient_ratio(obs["image"], roi="auto") < 0.9 * gradient_ratio(obs["image"], roi=roi)
+        assert policy.b_l == pytest.approx(max(start_height(policy.r_c), policy.config.min_brush_length))
+    finally:
+        env.close()
+    small = gym.make("HairBrush-v0", wig="curly", obs_mode="state+image", width=160, height=120)
+    try:
+        with pytest.warns(UserWarning, match="160x120"):
+            SigmoidPolicy(small).act(small.reset(seed=0)[0])
+    finally:
+        small.close()

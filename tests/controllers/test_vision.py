@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.stats import spearmanr
 
-from controllers.vision import curliness, gradient_images, hair_roi
+from controllers.vision import curliness, gradient_images, gradient_ratio, hair_roi
 
 
 def draw_hair(curl_ratio: float, *, seed=0, colour=(60, 40, 20), background=(235, 235, 235), size=(240, 200)):
@@ -24,6 +24,27 @@ def draw_hair(curl_ratio: float, *, seed=0, colour=(60, 40, 20), background=(235
         pts = np.column_stack([x, z]).round().astype(np.int32)
         cv2.polylines(img, [pts], False, colour, thickness=2, lineType=cv2.LINE_AA)
     return img
+
+
+def draw_side_on_helix(curl_ratio: float, *, pitch=80.0, size=(500, 300)):
+    """One strand, x = x0 + R cos(2π z / P), drawn anti-aliased with sub-pixel vertices, 2 px thick."""
+    h, w = size
+    img = np.full((h, w, 3), 235, np.uint8)
+    z = np.arange(10, h - 10, 0.25)
+    x = w / 2 + curl_ratio * pitch * np.cos(2 * np.pi * z / pitch)
+    pts = np.round(np.column_stack([x, z]) * 16).astype(np.int32)
+    cv2.polylines(img, [pts], False, (60, 40, 20), thickness=2, lineType=cv2.LINE_AA, shift=4)
+    return img
+
+
+@pytest.mark.parametrize("curl_ratio", [0.05, 0.1, 0.2, 0.4, 0.8])
+def test_gradient_ratio_of_a_side_on_helix_is_four_r_over_p(curl_ratio):
+    # analytic: Σ|G_y| / Σ|G_x| = ∫|dx| / ∫|dz| = 4R per pitch P (controllers/vision.py docstring)
+    img = draw_side_on_helix(curl_ratio)
+    roi = (5, img.shape[0] - 5, 0, img.shape[1])
+    assert gradient_ratio(img, roi=roi) == pytest.approx(4 * curl_ratio, rel=0.05)
+    # so the clipped R_c of eq. 3.5 saturates from R/P = 1/4 on
+    assert curliness(img, roi=roi) == pytest.approx(min(4 * curl_ratio, 1.0), rel=0.05)
 
 
 def test_straight_hair_is_near_zero_and_curly_near_one():
