@@ -109,9 +109,8 @@ def run_grid(
 
     def finished(row: dict) -> None:
         rows.append(row)
-        write_csv_rows(
-            csv_path, rows, COLUMNS
-        )  # after every episode: an interrupt loses at most the running ones
+        # after every episode: an interrupt loses at most the episodes still running
+        write_csv_rows(csv_path, rows, COLUMNS)
         bar.set_postfix(wig=row["wig"], policy=row["policy"], f_max=f"{row['max_force']:.1f}")
         bar.update(1)
 

@@ -93,3 +93,22 @@ def test_naive_hurts_on_the_curliest_wig_sigmoid_does_not(tmp_path) -> None:
     assert not any(r["diverged"] for r in rows)
     assert by_policy["naive"]["max_force"] >= PAIN_THRESHOLD and by_policy["naive"]["pain_violations"] >= 1
     assert by_policy["sigmoid"]["max_force"] < PAIN_THRESHOLD and by_policy["sigmoid"]["pain_violations"] == 0
+
+
+@pytest.mark.slow
+def test_naive_finishes_faster_than_sigmoid(tmp_path) -> None:
+    """Thesis Fig. 3.11 (bottom), reduced to the straight wig: naive thirds finishes in less brushing time than the
+    sigmoid closed loop, whose Algorithm 1 needs more strokes before eq. 3.4 says finished."""
+    rows = compare.run_grid(
+        ["straight"],
+        ["naive", "sigmoid"],
+        episodes=1,
+        seed=0,
+        out=tmp_path,
+        env_kwargs={"width": 640, "height": 480},
+        workers=2,
+        progress=False,
+    )
+    by_policy = {r["policy"]: r for r in rows}
+    assert not any(r["diverged"] for r in rows)
+    assert by_policy["naive"]["time"] < by_policy["sigmoid"]["time"], by_policy
