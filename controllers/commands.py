@@ -6,6 +6,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from hairbrush_env.commands import add_webcam_args
+
 
 def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
     import numpy as np
@@ -68,8 +70,7 @@ def register_vision(sub: argparse._SubParsersAction) -> None:
     cal.add_argument("--wigs", default="all", help="comma-separated presets or 'all'")
     cal.add_argument("--seeds", default="0,1,2", help="pre-brushed states per wig (comma-separated)")
     cal.add_argument("--jitters", type=int, default=3, help="camera placements per state (first is nominal)")
-    cal.add_argument("--width", type=int, default=640, help="webcam image width [px]")
-    cal.add_argument("--height", type=int, default=480, help="webcam image height [px]")
+    add_webcam_args(cal)
     cal.add_argument("--out", default="runs/vision")
     cal.add_argument("--quiet", action="store_true")
     cal.set_defaults(func=_cmd_vision_calibrate)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from . import add_webcam_args
+
 
 def _wig_names(text: str) -> list[str]:
     """Comma-separated preset names, or ``all`` for every preset (straightest first)."""
@@ -49,13 +51,7 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--seed", type=int, default=0, help="episode k uses seed S + k for every policy")
     p.add_argument("--out", default="runs/compare", help="output directory (resumes an interrupted grid)")
     p.add_argument("--workers", type=int, default=1, help="episodes run in this many processes")
-    p.add_argument(
-        "--width",
-        type=int,
-        default=640,
-        help="webcam image width [px]; the vision R_c needs ~640x480 to resolve tight coils (README)",
-    )
-    p.add_argument("--height", type=int, default=480, help="webcam image height [px]")
+    add_webcam_args(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_compare)
 

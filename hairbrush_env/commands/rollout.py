@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 
+from . import add_webcam_args
+
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
     import gymnasium as gym
@@ -115,13 +117,7 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--obs-mode", default="state+image", choices=["state", "image", "state+image"])
     p.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording")
     p.add_argument("--video", metavar="OUT.mp4", help="write the webcam video (10 fps)")
-    p.add_argument(
-        "--width",
-        type=int,
-        default=640,
-        help="webcam image width (observation, render, video); vision R_c needs ~640x480 for tight coils",
-    )
-    p.add_argument("--height", type=int, default=480, help="webcam image height")
+    add_webcam_args(p)
     p.add_argument("--json", metavar="OUT.json", help="write per-episode metrics and per-stroke traces")
     p.add_argument("--plot", metavar="OUT.png", help="plot force vs time and max force per stroke")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
