@@ -14,10 +14,12 @@ from typing import Any
 
 import numpy as np
 
+from hairbrush_env.commands import WEBCAM_SIZE
+
 from .vision import curliness
 
 #: Smallest webcam image height at which R_c ranks the curled presets (README "Vision curliness").
-MIN_IMAGE_HEIGHT = 480
+MIN_IMAGE_HEIGHT = WEBCAM_SIZE[1]
 #: Steepness fitted on real wigs in the thesis (Fig. 3.9).
 THESIS_K = 8.5
 #: Steepness fitted in simulation by ``scripts/fit_sigmoid.py`` (see README); the default of the policy.
@@ -98,7 +100,8 @@ class SigmoidPolicy:
             if image.shape[0] < MIN_IMAGE_HEIGHT:
                 warnings.warn(
                     f"SigmoidPolicy: a {image.shape[1]}x{image.shape[0]} webcam image blurs tight coils and "
-                    "lowers their R_c (README, 'Vision curliness'); make the env with width=640, height=480",
+                    "lowers their R_c (README, 'Vision curliness'); make the env with "
+                    f"width={WEBCAM_SIZE[0]}, height={WEBCAM_SIZE[1]}",
                     stacklevel=3,
                 )
             # crop to the hair as the thesis does; the env knows where its webcam sees the hair

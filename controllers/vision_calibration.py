@@ -20,6 +20,8 @@ from pathlib import Path
 import numpy as np
 from scipy.stats import spearmanr
 
+from hairbrush_env.commands import WEBCAM_SIZE
+
 from .vision import gradient_ratio
 
 #: Alternative appearance for the robustness check: blond hair (RGBA) vs the default dark brown.
@@ -47,8 +49,8 @@ def render_rows(
     jitters: int = 2,
     jitter_m: float = 0.01,
     conditions: Sequence[Condition] = CONDITIONS,
-    width: int = 640,
-    height: int = 480,
+    width: int = WEBCAM_SIZE[0],
+    height: int = WEBCAM_SIZE[1],
     rng_seed: int = 0,
     progress: bool = False,
 ) -> list[dict]:

@@ -20,6 +20,7 @@ import hairbrush_env  # noqa: F401
 from controllers.sigmoid import THESIS_K
 from controllers.sigmoid_fit import SafePoint, fit_k, max_safe_length, plot_fit
 from controllers.vision import curliness
+from hairbrush_env.commands import add_webcam_args
 from hairbrush_env.hair import PRESETS
 from hairbrush_env.io import write_json
 
@@ -29,8 +30,7 @@ def main() -> None:
     p.add_argument("--wigs", default="all")
     p.add_argument("--seeds", default="0,1")
     p.add_argument("--tol", type=float, default=0.05)
-    p.add_argument("--width", type=int, default=640, help="webcam image width [px] for R_c")
-    p.add_argument("--height", type=int, default=480, help="webcam image height [px]")
+    add_webcam_args(p)
     p.add_argument("--out", default="runs/sigmoid")
     a = p.parse_args()
     wigs = list(PRESETS) if a.wigs == "all" else a.wigs.split(",")
