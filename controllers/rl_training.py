@@ -3,17 +3,23 @@
 State observations (the fast default) and images both come as a Dict, so the agents use SB3's
 ``MultiInputPolicy``: an MLP over the force features, plus a CNN for the image when ``obs_mode`` includes it.
 Outputs in ``out``: ``model.zip`` (final), ``best/best_model.zip`` (eval callback), ``checkpoints/``,
-``progress.csv`` (SB3's CSV logger), ``eval/evaluations.npz``, ``algo.txt`` and ``config.json``.
+``progress.csv`` (SB3's CSV logger), ``eval/evaluations.npz``, ``monitor/*.monitor.csv`` (one row per training
+episode), ``steps.csv`` (one row per env step: action, b_l, force, reward terms), ``algo.txt`` and ``config.json``.
 """
 
 from __future__ import annotations
 
+import csv
 import json
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 ALGOS = ("ppo", "sac")
+# info entries the training Monitor logs per episode (their final-step values), for the reward-hacking analysis
+MONITOR_INFO = ("max_force", "pain_violations", "entanglement", "entanglement_initial", "sim_time")
 
 
 @dataclass(frozen=True)
@@ -61,6 +67,45 @@ def _make_algo(cfg: TrainConfig, venv, log_dir: Path):
     )
 
 
+STEP_LOG_INFO = ("brush_length", "max_force", "aborted", "finished_rule")
+
+
+def _step_log_callback(path: Path):
+    """An SB3 callback appending every env step to ``path`` (CSV): the agent's actions and what they earned.
+
+    The Monitor keeps one row per episode; the reward-hacking check needs the strokes themselves (e.g. whether the
+    agent drifts to the shortest b_l). Append-only and flushed per step: a killed run keeps what it logged.
+    """
+    from stable_baselines3.common.callbacks import BaseCallback
+
+    class StepLog(BaseCallback):
+        def _on_training_start(self) -> None:
+            self._fh = path.open("a", newline="")
+            self._writer = None
+
+        def _on_step(self) -> bool:
+            actions = np.asarray(self.locals.get("actions"))
+            rewards = np.asarray(self.locals.get("rewards"))
+            dones = np.asarray(self.locals.get("dones"))
+            for i, info in enumerate(self.locals.get("infos", [])):
+                row = {"timesteps": self.num_timesteps, "env": i}
+                row.update({f"action_{j}": float(a) for j, a in enumerate(np.ravel(actions[i]))})
+                row.update(reward=float(rewards[i]), done=bool(dones[i]))
+                row.update({k: v for k, v in info.items() if k.startswith("reward_") or k in STEP_LOG_INFO})
+                if self._writer is None:
+                    self._writer = csv.DictWriter(self._fh, fieldnames=list(row), extrasaction="ignore")
+                    if self._fh.tell() == 0:
+                        self._writer.writeheader()
+                self._writer.writerow(row)
+            self._fh.flush()
+            return True
+
+        def _on_training_end(self) -> None:
+            self._fh.close()
+
+    return StepLog()
+
+
 def train(cfg: TrainConfig, out: str | Path):
     """Train, evaluate and save; returns the trained model."""
     from stable_baselines3.common.callbacks import CallbackList, CheckpointCallback, EvalCallback
@@ -77,11 +122,23 @@ def train(cfg: TrainConfig, out: str | Path):
     # "module:EnvId" makes gymnasium import hairbrush_env (which registers the envs) inside each worker process;
     # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
     env_id = f"hairbrush_env:{cfg.env}"
-    venv = make_vec_env(env_id, n_envs=cfg.n_envs, seed=cfg.seed, env_kwargs=env_kwargs, vec_env_cls=vec_cls)
+    # one Monitor CSV per worker: every training episode's return, length and info terms (the learning curve)
+    venv = make_vec_env(
+        env_id,
+        n_envs=cfg.n_envs,
+        seed=cfg.seed,
+        env_kwargs=env_kwargs,
+        vec_env_cls=vec_cls,
+        monitor_dir=str(out / "monitor"),
+        monitor_kwargs={"info_keywords": MONITOR_INFO},
+    )
     # same VecEnv type as training (SB3 warns otherwise)
     eval_env = make_vec_env(
         env_id, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs, vec_env_cls=vec_cls
     )
+    # written first, so checkpoints of an interrupted run can be loaded and described
+    (out / "algo.txt").write_text(cfg.algo.upper() + "\n")
+    (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
     try:
         model = _make_algo(cfg, venv, out)
         model.set_logger(configure(str(out), ["csv"] + (["tensorboard"] if cfg.tensorboard else [])))
@@ -98,12 +155,11 @@ def train(cfg: TrainConfig, out: str | Path):
                 CheckpointCallback(
                     save_freq=max(cfg.checkpoint_freq // cfg.n_envs, 1), save_path=str(out / "checkpoints")
                 ),
+                _step_log_callback(out / "steps.csv"),
             ]
         )
         model.learn(total_timesteps=cfg.total_timesteps, callback=callbacks, progress_bar=cfg.progress_bar)
         model.save(out / "model.zip")
-        (out / "algo.txt").write_text(cfg.algo.upper() + "\n")
-        (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
     finally:
         venv.close()
         eval_env.close()

@@ -13,6 +13,7 @@ import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
+from controllers.learning_curves import plot_learning_curves
 from controllers.rl_training import ALGOS, TrainConfig, train
 
 
@@ -49,7 +50,8 @@ def main() -> None:
         vec_env=a.vec_env,
     )
     train(cfg, a.out)
-    print(f"wrote {a.out}/model.zip and {a.out}/progress.csv")
+    png = plot_learning_curves(a.out)
+    print(f"wrote {a.out}/model.zip, {a.out}/progress.csv and {png}")
 
 
 if __name__ == "__main__":

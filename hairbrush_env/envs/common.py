@@ -26,16 +26,25 @@ class RewardConfig:
       fully detangled wig has collected ``progress_weight`` in total;
     * time: ``−time_weight · Δt`` with Δt the simulated brushing time of the step plus ``stroke_overhead_s`` per
       stroke (repositioning the brush — without it, many tiny strokes would look free);
-    * pain: ``−pain_weight · Σ max(0, f − F_T)`` over the load-cell samples of the step, in newtons.
+    * pain: ``−pain_weight · Σ max(0, f − F_T)`` over the load-cell samples of the step, in newtons;
+    * finish: ``finish_bonus`` on the step that ends the task (the finish rule of eq. 3.4, or the wig detangled).
+
+    Why the finish bonus (issue #6): without it the reward ranked "never brush through" above the thesis's
+    controllers. Curled wigs barely detangle in a few strokes, so progress is ~0 and an episode is scored by its
+    costs alone. Thirty strokes at the lowest b_l (short, painless, never finishing) then earn more than the
+    sigmoid closed loop or naive thirds, which pay pain and time to reach the full length — the "tiny strokes
+    forever" hack. With the bonus, reaching a full stable stroke (the thesis's goal) is worth more than the
+    repositioning overhead of the whole 30-stroke episode (30 · 2 s · 0.05 = 3), so stalling loses.
     """
 
     progress_weight: float = 10.0
     time_weight: float = 0.05
     stroke_overhead_s: float = 2.0
     pain_weight: float = 1.0
+    finish_bonus: float = 5.0
 
     def __post_init__(self) -> None:
-        for name in ("progress_weight", "time_weight", "stroke_overhead_s", "pain_weight"):
+        for name in ("progress_weight", "time_weight", "stroke_overhead_s", "pain_weight", "finish_bonus"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0.0):
                 raise ValueError(f"RewardConfig.{name}: must be a finite number >= 0, got {value!r}")
@@ -49,6 +58,7 @@ class RewardConfig:
         elapsed: float,
         forces: np.ndarray,
         threshold: float,
+        done: bool = False,
     ) -> dict[str, float]:
         progress = self.progress_weight * (e_prev - e_now) / max(e_initial, 1e-12)
         excess = np.clip(np.asarray(forces, dtype=float) - threshold, 0.0, None)
@@ -56,7 +66,13 @@ class RewardConfig:
             "reward_progress": float(progress),
             "reward_time": float(-self.time_weight * elapsed),
             "reward_pain": float(-self.pain_weight * excess.sum()),
+            "reward_finish": float(self.finish_bonus if done else 0.0),
         }
+
+    @staticmethod
+    def zero_terms() -> dict[str, float]:
+        """The terms of a step that earns nothing (a diverged simulation)."""
+        return {"reward_progress": 0.0, "reward_time": 0.0, "reward_pain": 0.0, "reward_finish": 0.0}
 
 
 def check_action(action, space) -> np.ndarray:

@@ -41,8 +41,9 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `Box(0, 255, (height, width, 3), uint8)` when `obs_mode` includes images.
 
     ## Rewards
-    As `HairBrush-v0`: `reward_progress + reward_time + reward_pain`, with the time cost per control step (0.1 s)
-    and the pain penalty on the brushing force above F_T; no repositioning overhead.
+    As `HairBrush-v0`: `reward_progress + reward_time + reward_pain + reward_finish`, with the time cost per
+    control step (0.1 s), the pain penalty on the brushing force above F_T, no repositioning overhead, and the
+    finish bonus when the wig is detangled (this env has no stroke-level finish rule).
 
     ## Starting State
     A pre-brushed wig (one of `n_wig_states` cached states picked by the seed); brush above the hair at the
@@ -136,7 +137,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         self._t += CONTROL_DT
         if result.diverged:
             info = self._info(True)
-            info.update(reward_progress=0.0, reward_time=0.0, reward_pain=0.0)
+            info.update(RewardConfig.zero_terms())
             return self._obs(), 0.0, False, True, info
         latest = self.sim.load_cell.latest
         self._force = latest.force_world if latest is not None else np.zeros(3)
@@ -144,6 +145,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         self._max_force = max(self._max_force, brushing)
         self._pain += int(brushing >= self.force_threshold)
         e_now = self.sim.entanglement()
+        terminated = e_now <= self.detangled_fraction * self._e0
         terms = self.reward_config.terms(
             e_prev=self._e,
             e_now=e_now,
@@ -151,11 +153,11 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             elapsed=CONTROL_DT,
             forces=np.array([brushing]),
             threshold=self.force_threshold,
+            done=terminated,
         )
         self._e = e_now
         info = self._info(False)
         info.update(terms, brushing_force=brushing, force_samples=[brushing], force_times=[self._t])
-        terminated = e_now <= self.detangled_fraction * self._e0
         return self._obs(), float(sum(terms.values())), bool(terminated), False, info
 
     def _obs(self) -> dict[str, np.ndarray]:

@@ -33,8 +33,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     ## Action Space
     `Box(-1, 1, (1,), float32)`: the normalized start height b_l (the thesis's brush length: the fraction of the
     brushable length measured up from the free ends; b_l = 1 starts as high as the brush head fits below the
-    scalp, `BrushingSim.brushable_length`), rescaled linearly from [-1, 1] to [`min_brush_length`, 1]. Use
-    :meth:`brush_length_to_action` / :meth:`action_to_brush_length` to convert.
+    scalp, `BrushingSim.brushable_length`), rescaled linearly from [-1, 0.98] to [`min_brush_length`, 1]; the top
+    band [0.98, 1] is the full stroke b_l = 1 (`FULL_STROKE_BAND`). Use :meth:`brush_length_to_action` /
+    :meth:`action_to_brush_length` to convert. The band exists because the finish rule needs b_l = 1 exactly, which
+    an agent with a tanh-squashed policy (SAC, PPO with squashing) only reaches with saturated outputs.
 
     ## Observation Space
     A `Dict` (one level):
@@ -52,10 +54,12 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     The first observation after `reset` shows the tangled wig, so a vision policy can estimate curliness.
 
     ## Rewards
-    `reward = reward_progress + reward_time + reward_pain` (see :class:`RewardConfig`): detangling progress (drop of
-    the entanglement Σ|Lk| over entwined pairs, normalized by its initial value), minus a time cost (simulated
-    stroke time plus a fixed repositioning overhead), minus a pain penalty (force above F_T, summed over samples).
-    Each term is reported in `info`.
+    `reward = reward_progress + reward_time + reward_pain + reward_finish` (see :class:`RewardConfig`): detangling
+    progress (drop of the entanglement Σ|Lk| over entwined pairs, normalized by its initial value), minus a time
+    cost (simulated stroke time plus a fixed repositioning overhead), minus a pain penalty (force above F_T, summed
+    over samples), plus a finish bonus (5) on the stroke that ends the episode by termination. Each term is
+    reported in `info`. The bonus closes a reward hack: without it, 30 painless strokes at the lowest b_l
+    outscored every policy that brushes through (README, *RL baseline*).
 
     ## Starting State
     A pre-brushed wig: the wig is shaken into a reproducible tangled state chosen by the seed among
@@ -92,8 +96,11 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `load_cell_noise` | 0.02 | load-cell noise s.d. [N] |
 
     ## Version History
-    - v0: initial release.
+    - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added.
     """
+
+    #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
+    FULL_STROKE_BAND = 0.01
 
     def __init__(
         self,
@@ -175,15 +182,19 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     # --- conversions -------------------------------------------------------------------------------------------
     def action_to_brush_length(self, action) -> float:
-        """Map an action in [-1, 1] to the normalized brush length b_l in [min_brush_length, 1]."""
+        """Map an action in [-1, 1] to the normalized brush length b_l in [min_brush_length, 1].
+
+        Linear on [-1, 1 − 2·FULL_STROKE_BAND]; the band above it is the full stroke b_l = 1.
+        """
         a = float(np.clip(np.asarray(action, dtype=np.float64).reshape(-1)[0], -1.0, 1.0))
-        return self.min_brush_length + (a + 1.0) * 0.5 * (1.0 - self.min_brush_length)
+        u = min((a + 1.0) * 0.5 / (1.0 - self.FULL_STROKE_BAND), 1.0)
+        return self.min_brush_length + u * (1.0 - self.min_brush_length)
 
     def brush_length_to_action(self, brush_length: float) -> np.ndarray:
-        """Inverse of :meth:`action_to_brush_length` (b_l clipped to the valid range)."""
+        """Inverse of :meth:`action_to_brush_length` (b_l clipped to the valid range; b_l = 1 → the band's bottom)."""
         b = float(np.clip(brush_length, self.min_brush_length, 1.0))
-        a = 2.0 * (b - self.min_brush_length) / (1.0 - self.min_brush_length) - 1.0
-        return np.array([a], dtype=np.float32)
+        u = (b - self.min_brush_length) / (1.0 - self.min_brush_length) * (1.0 - self.FULL_STROKE_BAND)
+        return np.array([2.0 * u - 1.0], dtype=np.float32)
 
     # --- gymnasium API -----------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict | None = None):
@@ -213,15 +224,14 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
                 force_trace=self._trace(forces), max_force=float(result.max_force), brush_length=b_l
             )
             info = self._info(diverged=True, aborted=result.aborted)
-            info.update(
-                reward_progress=0.0,
-                reward_time=0.0,
-                reward_pain=0.0,
-                force_samples=forces.tolist(),
-                force_times=times,
-            )
+            info.update(RewardConfig.zero_terms(), force_samples=forces.tolist(), force_times=times)
             return self._obs(), 0.0, False, True, info
         e_now = self.sim.entanglement()
+        f_max = float(result.max_force)
+        finished = (
+            self._prev_fmax is not None and abs(f_max - self._prev_fmax) < 0.4 and b_l >= 1.0 - 1e-9
+        )  # thesis eq. 3.4
+        detangled = e_now <= self.detangled_fraction * self._e0
         terms = self.reward_config.terms(
             e_prev=self._e,
             e_now=e_now,
@@ -229,14 +239,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             elapsed=result.sim_time + self.reward_config.stroke_overhead_s,
             forces=forces,
             threshold=self.force_threshold,
+            done=finished or detangled,
         )
         self._e = e_now
-        f_max = float(result.max_force)
         self._pain += int(f_max >= self.force_threshold)
-        finished = (
-            self._prev_fmax is not None and abs(f_max - self._prev_fmax) < 0.4 and b_l >= 1.0 - 1e-9
-        )  # thesis eq. 3.4
-        detangled = e_now <= self.detangled_fraction * self._e0
         self._prev_fmax = f_max
         self._last.update(force_trace=self._trace(forces), max_force=f_max, brush_length=b_l)
         info = self._info(diverged=False, aborted=result.aborted)

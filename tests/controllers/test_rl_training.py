@@ -14,6 +14,7 @@ import pytest
 pytest.importorskip("stable_baselines3")
 
 import hairbrush_env  # noqa: F401
+from controllers.learning_curves import plot_learning_curves, training_episodes
 from controllers.rl_training import TrainConfig, train
 from hairbrush_env.hair import get_wig
 from hairbrush_env.policies import make_policy
@@ -38,6 +39,16 @@ def test_ppo_smoke_trains_saves_and_plays(tmp_path):
     assert (tmp_path / "model.zip").exists() and (tmp_path / "best" / "best_model.zip").exists()
     rows = list(csv.DictReader((tmp_path / "progress.csv").open()))
     assert rows and int(float(rows[-1]["time/total_timesteps"])) >= 256
+    episodes = training_episodes(tmp_path)  # the Monitor logs every training episode with its info terms
+    assert len(episodes) >= 256 // 32 - 1 and all(e["l"] <= 32 for e in episodes)
+    assert all(0 < e["entanglement_initial"] for e in episodes)
+    assert plot_learning_curves(tmp_path).exists()
+    steps = list(csv.DictReader((tmp_path / "steps.csv").open()))  # every env step, for the hacking check
+    assert len(steps) >= 256 and {"action_0", "action_1", "reward", "reward_finish", "max_force"} <= set(
+        steps[0]
+    )
+    total = sum(float(r["reward"]) for r in steps[: int(episodes[0]["l"])])
+    assert total == pytest.approx(episodes[0]["r"], abs=1e-3)  # the step log adds up to the Monitor's return
     env = gym.make("HairBrushContinuous-v0", wig=wig, max_episode_steps=8)
     policy = make_policy(f"sb3:{tmp_path}", env)
     obs, _ = env.reset(seed=0)

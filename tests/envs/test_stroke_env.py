@@ -12,6 +12,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import hairbrush_env  # noqa: F401  (registers the envs)
+from hairbrush_env.envs.common import RewardConfig
 from hairbrush_env.envs.stroke import HairBrushEnv
 
 
@@ -62,9 +63,8 @@ def test_same_seed_same_rollout_and_reward_is_sum_of_terms(env):
         out = [obs]
         for a in (-0.2, 1.0):
             obs, reward, _term, _trunc, info = env.step(np.array([a], np.float32))
-            assert reward == pytest.approx(
-                info["reward_progress"] + info["reward_time"] + info["reward_pain"]
-            )
+            assert reward == pytest.approx(sum(v for k, v in info.items() if k.startswith("reward_")))
+            assert set(k for k in info if k.startswith("reward_")) == set(RewardConfig.zero_terms())
             assert len(info["force_samples"]) >= 1 and info["brush_length"] > 0
             out += [obs, reward, info["entanglement"]]
         return out
@@ -156,4 +156,39 @@ def test_brush_length_action_mapping(env):
     base = env.unwrapped
     for b in (base.min_brush_length, 0.5, 1.0):
         assert base.action_to_brush_length(base.brush_length_to_action(b)) == pytest.approx(b)
-    assert base.brush_length_to_action(1.0)[0] == pytest.approx(1.0)
+    # the top band of the action range is the full stroke, so squashed (tanh) policies can finish (eq. 3.4)
+    band_bottom = 1.0 - 2 * base.FULL_STROKE_BAND
+    assert base.brush_length_to_action(1.0)[0] == pytest.approx(band_bottom)
+    for a in (band_bottom, 0.99, 0.999, 1.0):
+        assert base.action_to_brush_length([a]) == 1.0
+    assert base.action_to_brush_length([band_bottom - 0.01]) < 1.0
+    grid = np.linspace(-1, 1, 101)
+    assert np.all(np.diff([base.action_to_brush_length([a]) for a in grid]) >= 0)
+
+
+def test_finish_bonus_is_paid_once_when_the_finish_rule_ends_the_episode(small_wig):
+    """Issue #6 reward fix: finishing (eq. 3.4) pays ``finish_bonus`` on the ending stroke and never before."""
+    env = gym.make("HairBrush-v0", wig=small_wig)
+    env.reset(seed=0)
+    bonus = env.unwrapped.reward_config.finish_bonus
+    paid = []
+    for _ in range(8):  # full strokes: the small wig's force settles within a few strokes
+        _, _, terminated, truncated, info = env.step(np.array([1.0], np.float32))
+        paid.append(info["reward_finish"])
+        if terminated or truncated:
+            break
+    env.close()
+    assert terminated and (info["finished_rule"] or info["detangled"])
+    assert paid[-1] == bonus > 0 and all(p == 0.0 for p in paid[:-1])
+
+
+def test_finish_bonus_outweighs_stalling_for_the_whole_episode():
+    """The hack the bonus closes: strokes at the lowest b_l until the limit cost at least the repositioning
+    overhead (30 · 2 s · 0.05 = 3); finishing must be worth more, or never brushing through wins."""
+    cfg = RewardConfig()
+    max_strokes = gym.spec("HairBrush-v0").max_episode_steps
+    assert cfg.finish_bonus > max_strokes * cfg.stroke_overhead_s * cfg.time_weight
+    with pytest.raises(ValueError, match="finish_bonus"):
+        RewardConfig(finish_bonus=-1.0)
+    terms = cfg.terms(e_prev=1.0, e_now=1.0, e_initial=1.0, elapsed=1.0, forces=np.zeros(3), threshold=10.0)
+    assert terms["reward_finish"] == 0.0 and set(terms) == set(RewardConfig.zero_terms())
