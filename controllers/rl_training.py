@@ -29,7 +29,7 @@ class TrainConfig:
     total_timesteps: int = 2000
     n_envs: int = 2
     seed: int = 0
-    wig: Any = "curly"  # preset name or WigConfig
+    wig: Any = "curly"  # preset name, WigConfig, or comma-separated presets (worker i trains on wig i mod n)
     obs_mode: str = "state"
     max_episode_steps: int | None = None  # None: the registered limit
     eval_freq: int = 500  # env steps (summed over workers) between evaluations
@@ -47,6 +47,7 @@ class TrainConfig:
         for name in ("total_timesteps", "n_envs", "eval_freq", "eval_episodes", "checkpoint_freq"):
             if int(getattr(self, name)) < 1:
                 raise ValueError(f"{name}: must be a positive integer, got {getattr(self, name)!r}")
+        training_wigs(self.wig)  # unknown preset names fail here, not in a worker process
         if self.vec_env not in ("subproc", "dummy"):
             raise ValueError(f"vec_env: expected 'subproc' or 'dummy', got {self.vec_env!r}")
 
@@ -106,10 +107,55 @@ def _step_log_callback(path: Path):
     return StepLog()
 
 
+def training_wigs(wig: Any) -> list[Any]:
+    """The wigs of a run: a WigConfig or preset name → one; ``"wavy,curly"`` → several (validated names)."""
+    if not isinstance(wig, str):
+        return [wig]
+    from hairbrush_env.hair import PRESETS
+
+    names = [w.strip() for w in wig.split(",") if w.strip()]
+    bad = [w for w in names if w not in PRESETS]
+    if not names or bad:
+        raise ValueError(f"wig: unknown preset(s) {bad or [wig]!r}; known: {sorted(PRESETS)}")
+    return names
+
+
+def _vec_env(env_id, wigs, n_envs, seed, env_kwargs, vec_cls, monitor_dir):
+    """``n_envs`` workers, worker i on ``wigs[i % len(wigs)]``, each wrapped in a Monitor (CSV if ``monitor_dir``)."""
+    from stable_baselines3.common.env_util import make_vec_env
+
+    if len(wigs) == 1:
+        return make_vec_env(
+            env_id,
+            n_envs=n_envs,
+            seed=seed,
+            env_kwargs={**env_kwargs, "wig": wigs[0]},
+            vec_env_cls=vec_cls,
+            monitor_dir=None if monitor_dir is None else str(monitor_dir),
+            monitor_kwargs={"info_keywords": MONITOR_INFO},
+        )
+
+    def maker(rank: int):
+        def make():
+            import gymnasium as gym
+            from stable_baselines3.common.monitor import Monitor
+
+            env = gym.make(env_id, **{**env_kwargs, "wig": wigs[rank % len(wigs)]})
+            path = None if monitor_dir is None else str(Path(monitor_dir) / str(rank))
+            return Monitor(env, filename=path, info_keywords=MONITOR_INFO)
+
+        return make
+
+    if monitor_dir is not None:
+        Path(monitor_dir).mkdir(parents=True, exist_ok=True)
+    venv = vec_cls([maker(i) for i in range(n_envs)])
+    venv.seed(seed)  # worker i resets with seed + i, as make_vec_env does
+    return venv
+
+
 def train(cfg: TrainConfig, out: str | Path):
     """Train, evaluate and save; returns the trained model."""
     from stable_baselines3.common.callbacks import CallbackList, CheckpointCallback, EvalCallback
-    from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.logger import configure
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
@@ -122,20 +168,12 @@ def train(cfg: TrainConfig, out: str | Path):
     # "module:EnvId" makes gymnasium import hairbrush_env (which registers the envs) inside each worker process;
     # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
     env_id = f"hairbrush_env:{cfg.env}"
+    wigs = training_wigs(cfg.wig)
     # one Monitor CSV per worker: every training episode's return, length and info terms (the learning curve)
-    venv = make_vec_env(
-        env_id,
-        n_envs=cfg.n_envs,
-        seed=cfg.seed,
-        env_kwargs=env_kwargs,
-        vec_env_cls=vec_cls,
-        monitor_dir=str(out / "monitor"),
-        monitor_kwargs={"info_keywords": MONITOR_INFO},
-    )
-    # same VecEnv type as training (SB3 warns otherwise)
-    eval_env = make_vec_env(
-        env_id, n_envs=1, seed=cfg.seed + 10_000, env_kwargs=env_kwargs, vec_env_cls=vec_cls
-    )
+    venv = _vec_env(env_id, wigs, cfg.n_envs, cfg.seed, env_kwargs, vec_cls, out / "monitor")
+    # same VecEnv type as training (SB3 warns otherwise); one eval env per training wig
+    eval_env = _vec_env(env_id, wigs, len(wigs), cfg.seed + 10_000, env_kwargs, vec_cls, None)
+    n_eval = max(cfg.eval_episodes, len(wigs))
     # written first, so checkpoints of an interrupted run can be loaded and described
     (out / "algo.txt").write_text(cfg.algo.upper() + "\n")
     (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
@@ -146,7 +184,7 @@ def train(cfg: TrainConfig, out: str | Path):
             [
                 EvalCallback(
                     eval_env,
-                    n_eval_episodes=cfg.eval_episodes,
+                    n_eval_episodes=n_eval,
                     eval_freq=max(cfg.eval_freq // cfg.n_envs, 1),
                     best_model_save_path=str(out / "best"),
                     log_path=str(out / "eval"),

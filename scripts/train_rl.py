@@ -24,7 +24,9 @@ def main() -> None:
     p.add_argument("--total-timesteps", type=int, default=20_000)
     p.add_argument("--n-envs", type=int, default=2)
     p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--wig", default="curly")
+    p.add_argument(
+        "--wig", default="curly", help="preset, or comma-separated presets: worker i trains on wig i mod n"
+    )
     p.add_argument("--obs-mode", default="state", choices=["state", "image", "state+image"])
     p.add_argument("--eval-freq", type=int, default=500)
     p.add_argument("--eval-episodes", type=int, default=2)

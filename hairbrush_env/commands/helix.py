@@ -117,7 +117,8 @@ def _add_helix(sub: argparse._SubParsersAction) -> None:
         "--set",
         action="append",
         metavar="KEY=VALUE",
-        help="override a CombingSetup field, e.g. --set P_over_r=18 --set q=4 (repeatable; q=none = midpoint)",
+        help="override a CombingSetup field, e.g. --set P_over_r=18 --set q=4 (repeatable; q=none = midpoint, "
+        "q=clamp = one pitch below the clamp)",
     )
     common.add_argument("--out", default="runs/helix", help="output directory (default: runs/helix)")
     run = hsub.add_parser(

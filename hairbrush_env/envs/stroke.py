@@ -67,7 +67,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     ## Episode End
     - Termination: the wig is detangled (entanglement ≤ `detangled_fraction` × initial) or the finish rule of
-      thesis eq. 3.4 holds: |f_max,i − f_max,i−1| < 0.4 N and b_l ≥ 1.
+      thesis eq. 3.4 holds: |f_max,i − f_max,i−1| < 0.4 N and b_l ≥ 1, where neither stroke was aborted at F_T
+      (an aborted stroke reads ≈ F_T by construction; without this, two aborted full strokes ended the episode).
     - Truncation: `max_episode_steps` strokes (set at registration, 30), or the simulation diverged
       (`info["diverged"] = True`; the episode ends, nothing is raised).
 
@@ -96,7 +97,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `load_cell_noise` | 0.02 | load-cell noise s.d. [N] |
 
     ## Version History
-    - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added.
+    - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added, and
+      the finish rule no longer counts strokes aborted at F_T.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
@@ -228,9 +230,14 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             return self._obs(), 0.0, False, True, info
         e_now = self.sim.entanglement()
         f_max = float(result.max_force)
+        # thesis eq. 3.4, on strokes that went through: an aborted stroke's maximum is F_T by construction, so two
+        # aborted full strokes would otherwise "finish" a wig the brush never got through
         finished = (
-            self._prev_fmax is not None and abs(f_max - self._prev_fmax) < 0.4 and b_l >= 1.0 - 1e-9
-        )  # thesis eq. 3.4
+            self._prev_fmax is not None
+            and not result.aborted
+            and abs(f_max - self._prev_fmax) < 0.4
+            and b_l >= 1.0 - 1e-9
+        )
         detangled = e_now <= self.detangled_fraction * self._e0
         terms = self.reward_config.terms(
             e_prev=self._e,
@@ -243,7 +250,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         )
         self._e = e_now
         self._pain += int(f_max >= self.force_threshold)
-        self._prev_fmax = f_max
+        self._prev_fmax = None if result.aborted else f_max
         self._last.update(force_trace=self._trace(forces), max_force=f_max, brush_length=b_l)
         info = self._info(diverged=False, aborted=result.aborted)
         info.update(

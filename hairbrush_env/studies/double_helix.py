@@ -195,6 +195,14 @@ class CombingSetup:
         """Depth of the tine below the clamp at insertion [m]."""
         return 0.5 * self.height if self.q is None else self.height - self.q * self.pitch
 
+    def q_near_clamp(self) -> float:
+        """The largest q allowed: the tine enters just over one pitch below the clamp.
+
+        The thesis's simulations insert the tine "close to the clamped end" (§2.3); only then can one stroke expel
+        nearly all the link, because the link between clamp and tine cannot pass the tine (``lk_above``).
+        """
+        return self.height / self.pitch - 1.01
+
     @property
     def q_effective(self) -> float:
         """Pitches between insertion point and free end."""
@@ -687,13 +695,20 @@ def run_combing(
 
 
 def replace_setup(setup: CombingSetup, **changes: Any) -> CombingSetup:
-    """``dataclasses.replace`` that accepts string values from the CLI (``"none"`` → ``None`` for ``q``)."""
+    """``dataclasses.replace`` that accepts string values from the CLI.
+
+    For ``q``: ``"none"`` / ``"mid"`` → ``None`` (mid-height insertion); ``"clamp"`` → :meth:`CombingSetup.q_near_clamp`
+    of the setup after the other changes.
+    """
     typed: dict[str, Any] = {}
+    near_clamp = False
     for k, v in changes.items():
         if k not in {f.name for f in fields(CombingSetup)}:
             raise ValueError(f"CombingSetup has no field {k!r}")
         if isinstance(v, str):
-            if k == "q" and v.lower() in ("none", "mid", "midpoint"):
+            if k == "q" and v.lower() == "clamp":
+                near_clamp, v = True, None
+            elif k == "q" and v.lower() in ("none", "mid", "midpoint"):
                 v = None
             elif k in ("edges_per_pitch", "samples"):
                 v = int(v)
@@ -702,6 +717,9 @@ def replace_setup(setup: CombingSetup, **changes: Any) -> CombingSetup:
             else:
                 v = float(v)
         typed[k] = v
+    if near_clamp:
+        out = replace(setup, **typed)
+        return replace(out, q=out.q_near_clamp())
     return replace(setup, **typed)
 
 

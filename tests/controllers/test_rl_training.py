@@ -82,3 +82,24 @@ def test_subprocess_workers_find_the_envs(tmp_path):
     )
     train(cfg, tmp_path)
     assert (tmp_path / "model.zip").exists()
+
+
+def test_wig_lists_spread_over_workers(tmp_path):
+    """``--wig wavy,straight``: worker i trains on wig i mod 2, each with its own Monitor log."""
+    from stable_baselines3.common.vec_env import DummyVecEnv
+
+    from controllers.rl_training import _vec_env, training_wigs
+
+    assert training_wigs("wavy, straight") == ["wavy", "straight"]
+    with pytest.raises(ValueError, match="nope"):
+        TrainConfig(wig="wavy,nope")
+    venv = _vec_env(
+        "hairbrush_env:HairBrushContinuous-v0", ["wavy", "straight"], 3, 0, {"obs_mode": "state"},
+        DummyVecEnv, tmp_path / "monitor",
+    )  # fmt: skip
+    try:
+        assert [e.unwrapped.sim.wig.name for e in venv.envs] == ["wavy", "straight", "wavy"]
+        venv.reset()
+        assert sorted(p.name for p in (tmp_path / "monitor").iterdir())[:1] == ["0.monitor.csv"]
+    finally:
+        venv.close()

@@ -192,3 +192,16 @@ def test_finish_bonus_outweighs_stalling_for_the_whole_episode():
         RewardConfig(finish_bonus=-1.0)
     terms = cfg.terms(e_prev=1.0, e_now=1.0, e_initial=1.0, elapsed=1.0, forces=np.zeros(3), threshold=10.0)
     assert terms["reward_finish"] == 0.0 and set(terms) == set(RewardConfig.zero_terms())
+
+
+def test_aborted_full_strokes_never_finish(small_wig):
+    """Eq. 3.4 only counts strokes that went through: two strokes aborted at F_T read ≈ F_T both, and used to end
+    the episode (and, with the finish bonus, pay for it) although the brush never got through the hair."""
+    env = gym.make("HairBrush-v0", wig=small_wig, force_threshold=0.05)
+    env.reset(seed=0)
+    for _ in range(4):
+        _, _, terminated, truncated, info = env.step(np.array([1.0], np.float32))
+        assert info["aborted"] and not info["finished_rule"] and info["reward_finish"] == 0.0
+        assert not (terminated or truncated)
+    assert info["pain_violations"] == 4
+    env.close()
