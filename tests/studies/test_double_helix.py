@@ -49,6 +49,18 @@ def test_replace_setup_parses_cli_strings():
         replace_setup(s, nope="1")
 
 
+def test_insertion_near_the_clamp_traps_about_one_link():
+    """``q=clamp`` (the thesis's simulated insertion "close to the clamped end"): just over one pitch stays above
+    the tine, so about one link is trapped there (lk_above) and the rest can be combed out."""
+    base = CombingSetup(P_over_r=36, **REDUCED)
+    s = replace_setup(base, q="clamp")
+    assert s.q == pytest.approx(s.height / s.pitch - 1.01)
+    assert replace_setup(base, q="clamp", P_over_r=24).q == pytest.approx(base.height / (24 * base.radius) - 1.01)
+    res = run_combing(s)
+    assert res.lk_above == pytest.approx(1.0, abs=0.15)
+    assert res.lk_end < res.lk_above + 0.1 * res.lk0  # all but ≤ 10 % of Lk0 of the combable link leaves
+
+
 def test_initial_geometry_and_link():
     s = CombingSetup()
     a, b = _strand_points(s)
