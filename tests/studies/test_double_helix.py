@@ -55,7 +55,9 @@ def test_insertion_near_the_clamp_traps_about_one_link():
     base = CombingSetup(P_over_r=36, **REDUCED)
     s = replace_setup(base, q="clamp")
     assert s.q == pytest.approx(s.height / s.pitch - 1.01)
-    assert replace_setup(base, q="clamp", P_over_r=24).q == pytest.approx(base.height / (24 * base.radius) - 1.01)
+    assert replace_setup(base, q="clamp", P_over_r=24).q == pytest.approx(
+        base.height / (24 * base.radius) - 1.01
+    )
     res = run_combing(s)
     assert res.lk_above == pytest.approx(1.0, abs=0.15)
     assert res.lk_end < res.lk_above + 0.1 * res.lk0  # all but ≤ 10 % of Lk0 of the combable link leaves
