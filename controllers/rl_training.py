@@ -169,6 +169,12 @@ def train(cfg: TrainConfig, out: str | Path):
     # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
     env_id = f"hairbrush_env:{cfg.env}"
     wigs = training_wigs(cfg.wig)
+    if cfg.env == "HairBrush-v0" and len(wigs) > 1:
+        # one observation space for all workers: the force trace of the longest wig's full stroke
+        from hairbrush_env.envs.stroke import default_trace_length
+        from hairbrush_env.hair import get_wig
+
+        env_kwargs["trace_length"] = max(default_trace_length(get_wig(w).hanging_length) for w in wigs)
     # one Monitor CSV per worker: every training episode's return, length and info terms (the learning curve)
     venv = _vec_env(env_id, wigs, cfg.n_envs, cfg.seed, env_kwargs, vec_cls, out / "monitor")
     # same VecEnv type as training (SB3 warns otherwise); one eval env per training wig

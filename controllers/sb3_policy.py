@@ -40,11 +40,27 @@ class SB3Policy:
             raise ValueError(f"path: model expects observation keys {missing} the env does not provide")
         self._keys = list(want.spaces) if hasattr(want, "spaces") else None
 
+    def _fit(self, key: str, value: Any) -> Any:
+        """Zero-pad or cut a 1-D observation to the length the model was trained with.
+
+        ``force_trace`` is sized to one full stroke of the env's wig (``default_trace_length``), so an agent trained
+        on one wig meets longer or shorter traces on others. The trace is 0-padded after the stroke anyway; cutting
+        drops the end of strokes longer than any the agent saw in training.
+        """
+        want = self.model.observation_space.spaces[key].shape
+        arr = np.asarray(value)
+        if arr.shape == want or arr.ndim != 1 or len(want) != 1:
+            return value
+        out = np.zeros(want, dtype=arr.dtype)
+        n = min(want[0], arr.shape[0])
+        out[:n] = arr[:n]
+        return out
+
     def reset(self, seed: int | None = None) -> None:
         """SB3 policies here are feed-forward: no state to reset."""
 
     def act(self, obs: Any) -> np.ndarray:
         if self._keys is not None:
-            obs = {k: obs[k] for k in self._keys}
+            obs = {k: self._fit(k, obs[k]) for k in self._keys}
         action, _ = self.model.predict(obs, deterministic=self.deterministic)
         return np.asarray(action, dtype=np.float32)

@@ -20,6 +20,14 @@ from .common import (
 )
 
 
+def default_trace_length(hanging_length: float, stroke_speed: float = 0.1) -> int:
+    """Samples of a full stroke at 10 Hz (the default ``trace_length``): the hanging length plus the clearance below
+    the free ends, with margin for hair that hangs lower after settling. Envs on several wigs that must share one
+    observation space (vectorized training) pass the largest of their wigs' values."""
+    travel = 1.5 * hanging_length + 0.05
+    return math.ceil(travel / stroke_speed * 10.0) + 2
+
+
 class HairBrushEnv(BrushEnvBase, EzPickle):
     r"""Robotic hair brushing at the stroke level.
 
@@ -154,10 +162,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         self.stroke_speed = check_positive("stroke_speed", stroke_speed)
         self.min_brush_length = float(min_brush_length)
         if trace_length is None:
-            # a full stroke at 10 Hz: the hanging length plus the clearance below the free ends, with margin for
-            # hair that hangs lower after settling
-            travel = 1.5 * self.sim.wig.hanging_length + 0.05
-            trace_length = math.ceil(travel / self.stroke_speed * 10.0) + 2
+            trace_length = default_trace_length(self.sim.wig.hanging_length, self.stroke_speed)
         if int(trace_length) != trace_length or trace_length < 1:
             raise ValueError(f"trace_length: must be a positive integer, got {trace_length!r}")
         self.trace_length = int(trace_length)

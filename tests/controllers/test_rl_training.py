@@ -51,6 +51,9 @@ def test_ppo_smoke_trains_saves_and_plays(tmp_path):
     assert total == pytest.approx(episodes[0]["r"], abs=1e-3)  # the step log adds up to the Monitor's return
     env = gym.make("HairBrushContinuous-v0", wig=wig, max_episode_steps=8)
     policy = make_policy(f"sb3:{tmp_path}", env)
+    # observations of another length (a wig with a longer or shorter force trace) are zero-padded or cut
+    np.testing.assert_array_equal(policy._fit("force", np.array([1.0, 2.0, 3.0, 4.0])), [1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(policy._fit("force", np.array([1.0, 2.0])), [1.0, 2.0, 0.0])
     obs, _ = env.reset(seed=0)
     policy.reset(0)
     action = policy.act(obs)
