@@ -30,11 +30,13 @@ class RewardConfig:
     * finish: ``finish_bonus`` on the step that ends the task (the finish rule of eq. 3.4, or the wig detangled).
 
     Why the finish bonus (issue #6): without it the reward ranked "never brush through" above the thesis's
-    controllers. Curled wigs barely detangle in a few strokes, so progress is ~0 and an episode is scored by its
-    costs alone. Thirty strokes at the lowest b_l (short, painless, never finishing) then earn more than the
-    sigmoid closed loop or naive thirds, which pay pain and time to reach the full length — the "tiny strokes
-    forever" hack. With the bonus, reaching a full stable stroke (the thesis's goal) is worth more than the
-    repositioning overhead of the whole 30-stroke episode (30 · 2 s · 0.05 = 3), so stalling loses.
+    controller. Curled wigs barely detangle in a few strokes, so progress is ~0 and an episode is scored by its
+    costs alone: on curly (seed 0), 30 strokes at the lowest b_l (short, painless, never finishing) scored −5.2 and
+    the sigmoid closed loop −6.2 — the "tiny strokes forever" hack. With the bonus, finishing (a full stroke that
+    goes through, twice, with a stable force; the thesis's goal) is worth more than the repositioning overhead of a
+    whole 30-stroke episode (30 · 2 s · 0.05 = 3), so stalling loses wherever finishing is possible. The stroke env
+    only counts strokes that were not aborted at F_T for the finish rule; otherwise two painful aborted strokes
+    would collect the bonus.
     """
 
     progress_weight: float = 10.0
