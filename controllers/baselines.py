@@ -1,8 +1,8 @@
-"""Baseline policies: full-length strokes, the naive thirds schedule and uniformly random actions.
+"""Baseline policies: full-length strokes, the naive thirds schedule, the shortest stroke and random actions.
 
 They follow :class:`hairbrush_env.policies.Policy` and are registered under the entry-point group
-``hairbrush_env.policies`` (names ``full``, ``naive`` and ``random``) so ``hairbrush rollout --policy NAME`` finds them.
-Both work on ``HairBrush-v0`` (stroke level); ``random`` works on any env.
+``hairbrush_env.policies`` (names ``full``, ``naive``, ``shortest`` and ``random``) so ``hairbrush rollout --policy
+NAME`` finds them. The first three work on ``HairBrush-v0`` (stroke level); ``random`` works on any env.
 """
 
 from __future__ import annotations
@@ -24,6 +24,24 @@ class FullStrokePolicy:
 
     def __init__(self, env: Any) -> None:
         self._action = _stroke_env(env).brush_length_to_action(1.0)
+
+    def reset(self, seed: int | None = None) -> None:
+        """Stateless."""
+
+    def act(self, obs: Any) -> np.ndarray:
+        return self._action.copy()
+
+
+class ShortestStrokePolicy:
+    """Always the lowest start height (b_l = ``min_brush_length``): a reference for a reward that pays stalling.
+
+    It never brushes through, so it never finishes (eq. 3.4) and rarely hurts; if an agent's return does not beat
+    this policy's, the reward (not the agent) is what needs looking at (issue #6, "tiny strokes forever").
+    """
+
+    def __init__(self, env: Any) -> None:
+        base = _stroke_env(env)
+        self._action = base.brush_length_to_action(base.min_brush_length)
 
     def reset(self, seed: int | None = None) -> None:
         """Stateless."""

@@ -18,7 +18,7 @@ from hairbrush_env.rollout import run_episode
 
 
 def test_policies_registered_by_entry_point():
-    assert {"full", "naive", "random", "sigmoid"} <= set(available_policies())
+    assert {"full", "naive", "random", "shortest", "sigmoid"} <= set(available_policies())
     with pytest.raises(ValueError, match="unknown policy 'nope'"):
         make_policy("nope", None)
 
@@ -40,6 +40,15 @@ def test_run_episode_full_policy_runs_to_an_end():
     assert all(s.brush_length == pytest.approx(1.0) for s in log.steps)
     assert all(len(s.forces) == len(s.times) >= 1 for s in log.steps)
     assert log.sim_time > 0 and log.total_reward == pytest.approx(sum(s.reward for s in log.steps))
+
+
+def test_shortest_policy_never_finishes():
+    """The stalling reference: every stroke at the lowest b_l, so eq. 3.4 (b_l = 1) never ends the episode."""
+    env = gym.make("HairBrush-v0", wig=SMALL_CURLY, max_episode_steps=3)
+    log = run_episode(env, make_policy("shortest", env), episode=0, seed=0, policy_name="shortest")
+    env.close()
+    assert log.truncated and not log.terminated and len(log.steps) == 3
+    assert all(s.brush_length == pytest.approx(env.unwrapped.min_brush_length) for s in log.steps)
 
 
 def test_rollout_cli_writes_everything(tmp_path):
