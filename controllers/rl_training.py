@@ -121,19 +121,10 @@ def training_wigs(wig: Any) -> list[Any]:
 
 
 def _vec_env(env_id, wigs, n_envs, seed, env_kwargs, vec_cls, monitor_dir):
-    """``n_envs`` workers, worker i on ``wigs[i % len(wigs)]``, each wrapped in a Monitor (CSV if ``monitor_dir``)."""
-    from stable_baselines3.common.env_util import make_vec_env
+    """``n_envs`` workers, worker i on ``wigs[i % len(wigs)]``, each wrapped in a Monitor (CSV if ``monitor_dir``).
 
-    if len(wigs) == 1:
-        return make_vec_env(
-            env_id,
-            n_envs=n_envs,
-            seed=seed,
-            env_kwargs={**env_kwargs, "wig": wigs[0]},
-            vec_env_cls=vec_cls,
-            monitor_dir=None if monitor_dir is None else str(monitor_dir),
-            monitor_kwargs={"info_keywords": MONITOR_INFO},
-        )
+    What SB3's ``make_vec_env`` does, plus a wig per worker.
+    """
 
     def maker(rank: int):
         def make():
