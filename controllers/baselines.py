@@ -19,11 +19,16 @@ def _stroke_env(env: Any):
     return base
 
 
-class FullStrokePolicy:
-    """Always brush the whole length (b_l = 1): the thesis's no-strategy baseline (Fig. 3.7, longest strokes)."""
+class _ConstantStroke:
+    """Every stroke from the same start height (subclasses choose it from the env)."""
 
     def __init__(self, env: Any) -> None:
-        self._action = _stroke_env(env).brush_length_to_action(1.0)
+        base = _stroke_env(env)
+        self._action = base.brush_length_to_action(self.brush_length(base))
+
+    @staticmethod
+    def brush_length(base: Any) -> float:
+        raise NotImplementedError
 
     def reset(self, seed: int | None = None) -> None:
         """Stateless."""
@@ -32,22 +37,24 @@ class FullStrokePolicy:
         return self._action.copy()
 
 
-class ShortestStrokePolicy:
+class FullStrokePolicy(_ConstantStroke):
+    """Always brush the whole length (b_l = 1): the thesis's no-strategy baseline (Fig. 3.7, longest strokes)."""
+
+    @staticmethod
+    def brush_length(base: Any) -> float:
+        return 1.0
+
+
+class ShortestStrokePolicy(_ConstantStroke):
     """Always the lowest start height (b_l = ``min_brush_length``): a reference for a reward that pays stalling.
 
     It never brushes through, so it never finishes (eq. 3.4) and rarely hurts; if an agent's return does not beat
     this policy's, the reward (not the agent) is what needs looking at (issue #6, "tiny strokes forever").
     """
 
-    def __init__(self, env: Any) -> None:
-        base = _stroke_env(env)
-        self._action = base.brush_length_to_action(base.min_brush_length)
-
-    def reset(self, seed: int | None = None) -> None:
-        """Stateless."""
-
-    def act(self, obs: Any) -> np.ndarray:
-        return self._action.copy()
+    @staticmethod
+    def brush_length(base: Any) -> float:
+        return base.min_brush_length
 
 
 class NaiveThirdsPolicy:

@@ -18,6 +18,10 @@ LOAD_CELL_CAPACITY_N = 100.0
 MAX_COUNT = 10_000.0
 
 
+#: The reward terms every step reports in ``info`` (the reward is their sum).
+REWARD_TERMS = ("reward_progress", "reward_time", "reward_pain", "reward_finish")
+
+
 @dataclass(frozen=True)
 class RewardConfig:
     """Weights of the reward terms (each term is reported in ``info``; the reward is their sum).
@@ -74,7 +78,7 @@ class RewardConfig:
     @staticmethod
     def zero_terms() -> dict[str, float]:
         """The terms of a step that earns nothing (a diverged simulation)."""
-        return {"reward_progress": 0.0, "reward_time": 0.0, "reward_pain": 0.0, "reward_finish": 0.0}
+        return dict.fromkeys(REWARD_TERMS, 0.0)
 
 
 def check_action(action, space) -> np.ndarray:
