@@ -152,7 +152,13 @@ def _cmd_census(args: argparse.Namespace) -> int:
         cells = ", ".join(
             f"N={n}: {m:.1f}±{e:.1f}" for n, m, e in zip(table["N"], table["mean"], table["sem"], strict=True)
         )
-        print(f"{crit:>8}: ρ_N [1/m] {cells}")
+        print(f"{crit:>9}: ρ_N [1/m] {cells}")
+    q = stats["layer_lk_quantiles"]
+    print(
+        f"link_auto: |Lk| > {stats['lk_threshold_auto']:.3f}, the smallest threshold with no all-hair cluster in any"
+        f" layer (the thesis's rule; it found 0.4). Layer-pair |Lk|: median {q['50']:.3f}, 99 % {q['99']:.3f},"
+        f" max {q['100']:.3f}"
+    )
     print("wrote " + ", ".join(str(p) for p in [*paths, out / "census.png"]))
     return 0
 

@@ -13,6 +13,12 @@ Census: :func:`hairbrush_env.topology.interaction_census` on the relaxed centerl
 ``crossing`` (side view, projection on the x–z plane), ``contact`` (centerline distance < 2r·``contact_factor``)
 and ``link`` (|Lk| of the pieces in a layer > 0.4, Fig. 2.5b). Results are averaged over seeds with standard errors.
 
+The thesis picked 0.4 as "roughly the smallest linking threshold that provides nontrivial segregation of interaction
+types" in its curls. In ours no layer pair reaches 0.4 (max ≈ 0.17), so that criterion counts nothing. The census
+therefore also reports ``link_auto``: the same rule applied to these curls
+(:func:`~hairbrush_env.topology.empirical_lk_threshold`, one threshold for all seeds — the smallest at which no layer
+has all hairs in one cluster), with the threshold in ``stats["lk_threshold_auto"]``.
+
 Numerics: as in the thesis (mass ×1e8, gravity ÷1e8 there) mass is scaled up and gravity down, keeping m·g, the
 statics, unchanged (``mass_scale``): MuJoCo's soft contacts are stiff per unit mass, and a 75 µm hair vertex of
 2 mm weighs 5e-8 kg. Drag (``drag`` per unit length) removes the jostling energy before the census.
@@ -231,33 +237,60 @@ def census_of(strands: Sequence[np.ndarray], setup: CurlSetup) -> dict[str, dict
     return out
 
 
+_POINT_VERSION = 2  # 2: results carry the layers' |Lk| matrices (older cache files are recomputed)
+
+
 def run_point(point: dict[str, Any]) -> dict[str, Any]:
-    """Sweep worker: ``{"setup": asdict(CurlSetup), "seed": int}`` → census (JSON keys are strings)."""
+    """Sweep worker: ``{"setup": asdict(CurlSetup), "seed": int, "version": 2}`` → census (JSON keys are strings)
+    plus ``"link_matrices"`` (layers × hairs × hairs |Lk|, NaN → None) and ``"extent"`` for the threshold rule."""
+    from ..topology import layer_link_matrices
+
     setup = CurlSetup(**point["setup"])
     strands = simulate_curl(setup, seed=int(point["seed"]))
     cen = census_of(strands, setup)
-    return {crit: {str(n): v for n, v in c.items()} for crit, c in cen.items()}
+    out: dict[str, Any] = {crit: {str(n): v for n, v in c.items()} for crit, c in cen.items()}
+    mats, extent = layer_link_matrices(strands, n_layers=setup.n_layers, axis=2)
+    out["link_matrices"] = np.where(np.isnan(mats), None, mats).tolist()
+    out["extent"] = extent
+    return out
+
+
+def _table(rows: list[dict[str, float]]) -> dict[str, list]:
+    """Mean and standard error over seeds of ``{N: ρ_N}`` dicts (missing N count as 0)."""
+    n_max = max((int(n) for r in rows for n in r), default=2)
+    ns = list(range(2, n_max + 1))
+    table = np.array([[r.get(str(n), 0.0) for n in ns] for r in rows])  # (seeds, N)
+    sem = table.std(axis=0, ddof=1) / math.sqrt(len(rows)) if len(rows) > 1 else np.zeros(len(ns))
+    return {"N": ns, "mean": table.mean(axis=0).tolist(), "sem": sem.tolist(), "per_seed": table.tolist()}
 
 
 def run_census_sweep(
     setup: CurlSetup, seeds: Iterable[int], *, cache_dir, workers: int = 2, progress: bool = True
 ) -> dict[str, Any]:
     """Census over several seeds (parallel, cached, resumable via :mod:`.sweep`); mean and standard error of ρ_N."""
+    from ..topology import empirical_lk_threshold, link_census_from_matrices
     from .sweep import run_sweep
 
     seeds = list(seeds)
     if not seeds:
         raise ValueError("seeds must not be empty")
-    points = [{"setup": asdict(setup), "seed": int(s)} for s in seeds]
+    points = [{"setup": asdict(setup), "seed": int(s), "version": _POINT_VERSION} for s in seeds]
     raw = run_sweep(run_point, points, cache_dir, workers=workers, desc="census", progress=progress)
     stats: dict[str, Any] = {"setup": asdict(setup), "seeds": seeds, "criteria": {}}
     for crit in CRITERIA:
-        n_max = max((int(n) for r in raw for n in r[crit]), default=2)
-        ns = list(range(2, n_max + 1))
-        table = np.array([[r[crit].get(str(n), 0.0) for n in ns] for r in raw])  # (seeds, N)
-        sem = table.std(axis=0, ddof=1) / math.sqrt(len(raw)) if len(raw) > 1 else np.zeros(len(ns))
-        stats["criteria"][crit] = {"N": ns, "mean": table.mean(axis=0).tolist(), "sem": sem.tolist(),
-                                   "per_seed": table.tolist()}  # fmt: skip
+        stats["criteria"][crit] = _table([r[crit] for r in raw])
+    mats = [np.array(r["link_matrices"], dtype=float) for r in raw]  # None → NaN
+    auto = empirical_lk_threshold(np.concatenate(mats))
+    auto_rows = [
+        {str(n): v for n, v in link_census_from_matrices(m, auto, r["extent"]).items()}
+        for m, r in zip(mats, raw, strict=True)
+    ]
+    stats["criteria"]["link_auto"] = _table(auto_rows)
+    stats["lk_threshold_auto"] = auto
+    finite = np.concatenate([m[np.isfinite(m) & (m > 0)] for m in mats])
+    stats["layer_lk_quantiles"] = {
+        q: float(np.percentile(finite, float(q))) if finite.size else 0.0 for q in ("50", "90", "99", "100")
+    }
     return stats
 
 
@@ -274,6 +307,14 @@ def write_census(stats: dict[str, Any], out_dir) -> list:
     return [write_text(out / "census.csv", "\n".join(lines) + "\n"), write_json(out / "census.json", stats)]
 
 
+def _label(crit: str, stats: dict[str, Any]) -> str:
+    if crit == "link":
+        return f"link |Lk| > {stats['setup']['lk_threshold']:g}"
+    if crit == "link_auto":
+        return f"link |Lk| > {stats['lk_threshold_auto']:.3f} (thesis rule)"
+    return crit
+
+
 def plot_census(stats: dict[str, Any], path) -> None:
     """Bar chart of ρ_N per criterion with standard-error bars (thesis Figs 2.3b, 2.5)."""
     from ..viz import PALETTE, new_figure, save_figure
@@ -286,7 +327,7 @@ def plot_census(stats: dict[str, Any], path) -> None:
         t = stats["criteria"][crit]
         ns = np.asarray(t["N"], dtype=float)
         ax.bar(ns + (i - (len(crits) - 1) / 2) * width, t["mean"], width, yerr=t["sem"], capsize=3,
-               color=PALETTE[i], label=crit)  # fmt: skip
+               color=PALETTE[i], label=_label(crit, stats))  # fmt: skip
     n_hairs, n_curls = stats["setup"]["n_hairs"], len(stats["seeds"])
     ax.set(xlabel="N (hairs per interaction)", ylabel="ρ [interactions / m]",
            title=f"N-body interactions, {n_hairs} hairs, {n_curls} curls (±s.e.)")  # fmt: skip

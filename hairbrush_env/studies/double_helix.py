@@ -9,9 +9,9 @@ Model (MuJoCo 4.0 discrete elastic rods from :mod:`hairbrush_env.rods`, topology
 * Strands: two :class:`~hairbrush_env.rods.RodSpec` whose *rest shape* is the uniform double helix (the thesis's
   molded nylon helices), clamped at z = 0 and hanging towards −z. Defaults are the thesis tables (Fig. 2.9):
   r = 4.25e-4 m, h = 0.15 m, E = 0.27 GPa × 0.078 (the thesis's simulation scaling), ν = 0.5 → 0.49 (MuJoCo
-  rejects 0.5), mass per length 6.65e-4 kg/m (nylon). The ``discrete`` integrator is implicit, so — unlike the
-  thesis's explicit scheme — we do *not* rescale mass up and gravity down (``mass_scale = 1``; the option is kept
-  and keeps m·g constant if used).
+  rejects 0.5), mass per length 6.65e-4 kg/m (nylon). Mass is scaled up and gravity down by ``mass_scale`` = 100
+  (m·g constant, as the thesis did with 7.52e5): MuJoCo's soft contacts are stiff per unit mass, and at the
+  physical mass the tine sank 0.2 r into the strands from the insertion bump alone.
 * Insertion: the rods are built in their rest shape; before settling, both strands are pushed radially apart by a
   smooth bump (width ≈ P/4) centred at the insertion depth so that the full-size tine fits between them (for
   R = r the strands touch and there is no gap). The strands then relax under gravity around the fixed tine
@@ -21,9 +21,13 @@ Model (MuJoCo 4.0 discrete elastic rods from :mod:`hairbrush_env.rods`, topology
 * Force: F is the z-component of the sum of all tine–strand contact forces (``mj_contactForce`` rotated to the
   world frame), i.e. the force the tine exerts on the hair, positive downwards. A mocap body has no actuator; the
   contact sum is the exact constraint force acting on it.
-* Quasi-static: viscous drag ``drag`` [N s/m²] on every vertex (≈ critical for the hanging pendulum mode) removes
-  swinging without loading the strands: at the default 0.02 m/s the drag on the whole strand pair is < 1 % of the
-  force scale B/l0². ``tests/studies/test_double_helix.py`` checks that halving the speed changes f_max by < 15 %.
+* Quasi-static: the tine moves at 5 mm/s (``speed``). On the reduced P/r = 36 helix (6 cm) f_max is 4.13, 3.77,
+  3.05, 2.85, 2.77 and 2.74 at 40, 20, 10, 5, 2.5 and 1.25 mm/s (``hairbrush helix sweep --vary speed=...``,
+  README), so at 5 mm/s the force is within ~4 % of its slow limit; the earlier 20 mm/s default carried a ~35 %
+  dynamic part, about half of it inertia of the mass-scaled strands (mass ×10 instead of ×100 halves it). Viscous
+  drag ``drag`` [N s/m²] on every vertex (≈ critical for the hanging pendulum mode) removes swinging; f_max does
+  not depend on it (×0.25 … ×4 changed it by < 0.3 % at 20 mm/s). ``tests/studies/test_double_helix.py`` checks
+  that halving the speed changes f_max by < 5 %.
 * D, the total tine displacement needed to unlink, is the displacement at the last tine–strand contact; x = d/D.
 * f = F l0²/B (l0 = 0.01 m, B = E π r⁴/4 of one filament), as in thesis Figs 2.3 and 2.6.
 * Lk(x): open-curve Gauss linking integral of the two centerlines (exact for polylines); link density λ(s) from
@@ -116,7 +120,7 @@ class CombingSetup:
     R_over_r: float = 1.0
     t_over_r: float = 0.9
     q: float | None = None
-    speed: float = 0.02
+    speed: float = 0.005
     friction: float = 0.0
     edges_per_pitch: int = 10
     radius: float = 4.25e-4

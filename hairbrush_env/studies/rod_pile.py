@@ -671,7 +671,9 @@ def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float,
     """
     L, d = sp.length, sp.diameter
     r = sp.container_diameter / 2
-    band = L * max(1.0, k / 6)
+    # new rods spread over a vertical band so they do not overlap; it holds ~6 rods per L of height in a 1.5 L
+    # container, and proportionally more in wider containers (same layer density, so the same fall time)
+    band = L * max(1.0, k / 6 * (1.5 * L / (2 * r)) ** 2)
     near = (
         existing[np.maximum(existing[:, 0, 2], existing[:, 1, 2]) > z_top - 2 * d]
         if len(existing)

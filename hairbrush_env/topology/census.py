@@ -12,6 +12,12 @@ Criteria:
   ``axis`` and the next coordinate axis ``(axis + 1) % 3`` (the thesis's image-based count, an upper bound);
 * ``"contact"`` — the pieces come closer than ``contact_distance`` (centerline distance, e.g. a hair diameter);
 * ``"link"`` — |open Gauss integral of the two pieces| exceeds ``lk_threshold`` (0.4 in the thesis, Fig. 2.5b).
+
+The thesis chose 0.4 as "roughly the smallest linking threshold that provides nontrivial segregation of interaction
+types" for its curls. :func:`empirical_lk_threshold` applies that rule to other bundles: the smallest threshold at
+which no layer's strands all fall into one cluster (computed exactly from the layers' |Lk| matrices,
+:func:`layer_link_matrices`, as the largest maximum-spanning-tree bottleneck over the layers);
+:func:`link_census_from_matrices` then counts clusters at any threshold without recomputing the integrals.
 """
 
 from __future__ import annotations
@@ -21,12 +27,18 @@ from collections.abc import Sequence
 
 import numpy as np
 from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
+from scipy.sparse.csgraph import connected_components, minimum_spanning_tree
 
 from ._kernels import min_segment_distance, pair_matrix
 from ._validate import as_curve
 
-__all__ = ["clip_to_slab", "interaction_census"]
+__all__ = [
+    "clip_to_slab",
+    "empirical_lk_threshold",
+    "interaction_census",
+    "layer_link_matrices",
+    "link_census_from_matrices",
+]
 
 
 def clip_to_slab(curve: np.ndarray, axis: int, lo: float, hi: float) -> list[np.ndarray]:
@@ -120,11 +132,7 @@ def interaction_census(
     curves = [as_curve(s, f"strands[{i}]") for i, s in enumerate(strands)]
     if len(curves) < 2:
         raise ValueError(f"strands: need at least 2 strands, got {len(curves)}")
-    coords = np.concatenate([c[:, axis] for c in curves])
-    z0, z1 = float(coords.min()), float(coords.max())
-    if z1 <= z0:
-        raise ValueError("strands: the bundle has zero extent along the axis")
-    edges = np.linspace(z0, z1, int(n_layers) + 1)
+    edges, extent = _layers(curves, n_layers, axis)
     counts: dict[int, int] = {}
     for lo, hi in itertools.pairwise(edges):
         pieces = [clip_to_slab(c, axis, lo, hi) for c in curves]
@@ -138,13 +146,103 @@ def interaction_census(
                 ):
                     rows.append(i)
                     cols.append(j)
-        if not rows:
-            continue
-        graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(len(curves),) * 2)
-        _, labels = connected_components(graph, directed=False)
-        sizes = np.bincount(labels)
-        for size in sizes[sizes >= 2]:
-            counts[int(size)] = counts.get(int(size), 0) + 1
-    length = z1 - z0
+        _count_clusters(rows, cols, len(curves), counts)
+    return _per_metre(counts, extent)
+
+
+def _count_clusters(rows: list[int], cols: list[int], n: int, counts: dict[int, int]) -> None:
+    """Add the connected clusters (size ≥ 2) of one layer's interaction graph to ``counts``."""
+    if not rows:
+        return
+    graph = coo_matrix((np.ones(len(rows)), (rows, cols)), shape=(n, n))
+    _, labels = connected_components(graph, directed=False)
+    sizes = np.bincount(labels)
+    for size in sizes[sizes >= 2]:
+        counts[int(size)] = counts.get(int(size), 0) + 1
+
+
+def _per_metre(counts: dict[int, int], length: float) -> dict[int, float]:
     top = max(counts, default=1)
     return {n: counts.get(n, 0) / length for n in range(2, top + 1)}
+
+
+def _layers(curves: list[np.ndarray], n_layers: int, axis: int) -> tuple[np.ndarray, float]:
+    coords = np.concatenate([c[:, axis] for c in curves])
+    z0, z1 = float(coords.min()), float(coords.max())
+    if z1 <= z0:
+        raise ValueError("strands: the bundle has zero extent along the axis")
+    return np.linspace(z0, z1, int(n_layers) + 1), z1 - z0
+
+
+def layer_link_matrices(
+    strands: Sequence[np.ndarray], *, n_layers: int = 20, axis: int = 2
+) -> tuple[np.ndarray, float]:
+    """|Lk| of every strand pair's pieces in every layer, and the bundle's extent along ``axis``.
+
+    Returns ``(mats, extent)``: ``mats[k, i, j]`` = |Σ Gauss integrals of strand i's and strand j's pieces in layer
+    k| (symmetric; NaN where strand i or j has no piece in the layer, 0 on the diagonal), the quantity that the
+    ``"link"`` criterion of :func:`interaction_census` compares with its threshold.
+    """
+    if axis not in (0, 1, 2):
+        raise ValueError(f"axis: expected 0, 1 or 2, got {axis!r}")
+    if int(n_layers) != n_layers or n_layers < 1:
+        raise ValueError(f"n_layers: expected a positive integer, got {n_layers!r}")
+    curves = [as_curve(s, f"strands[{i}]") for i, s in enumerate(strands)]
+    if len(curves) < 2:
+        raise ValueError(f"strands: need at least 2 strands, got {len(curves)}")
+    edges, extent = _layers(curves, n_layers, axis)
+    n = len(curves)
+    mats = np.full((int(n_layers), n, n), np.nan)
+    for k, (lo, hi) in enumerate(itertools.pairwise(edges)):
+        pieces = [clip_to_slab(c, axis, lo, hi) for c in curves]
+        for i in range(n):
+            if not pieces[i]:
+                continue
+            mats[k, i, i] = 0.0
+            for j in range(i + 1, n):
+                if pieces[j]:
+                    lk = sum(pair_matrix(x, y)[0].sum() for x in pieces[i] for y in pieces[j])
+                    mats[k, i, j] = mats[k, j, i] = abs(lk)
+    return mats, extent
+
+
+def link_census_from_matrices(mats: np.ndarray, threshold: float, extent: float) -> dict[int, float]:
+    """``{N: ρ_N}`` of the ``"link"`` criterion at ``threshold`` from :func:`layer_link_matrices` output."""
+    mats = np.asarray(mats, dtype=float)
+    if mats.ndim != 3 or mats.shape[1] != mats.shape[2]:
+        raise ValueError(f"mats: expected shape (layers, n, n), got {mats.shape}")
+    if not threshold >= 0:
+        raise ValueError(f"threshold: must be >= 0, got {threshold!r}")
+    if not extent > 0:
+        raise ValueError(f"extent: must be > 0, got {extent!r}")
+    counts: dict[int, int] = {}
+    for m in mats:
+        rows, cols = np.nonzero(np.triu(np.nan_to_num(m, nan=-1.0) > threshold, 1))
+        _count_clusters(rows.tolist(), cols.tolist(), m.shape[0], counts)
+    return _per_metre(counts, extent)
+
+
+def empirical_lk_threshold(mats: np.ndarray) -> float:
+    """Smallest threshold m at which no layer's strands all join one ``"link"`` cluster (|Lk| > m).
+
+    For each layer with ≥ 2 strands present, the interaction graph {|Lk| > m} connects all of them exactly when m is
+    below the layer's bottleneck: the smallest edge of a maximum spanning tree of the |Lk| weights. The returned m is
+    the largest bottleneck over the layers (0 if no layer has 2 strands), so at m the census shows no all-strand
+    cluster, and just below m at least one layer does. ``mats`` may hold several bundles' layers stacked along axis
+    0 (one threshold for all, as the thesis chose one for all its curls).
+    """
+    mats = np.asarray(mats, dtype=float)
+    if mats.ndim != 3 or mats.shape[1] != mats.shape[2]:
+        raise ValueError(f"mats: expected shape (layers, n, n), got {mats.shape}")
+    best = 0.0
+    for m in mats:
+        present = ~np.isnan(np.diag(m))
+        w = m[np.ix_(present, present)]
+        if len(w) < 2:
+            continue
+        # maximum spanning tree = minimum spanning tree of (top − w); zero entries mean "no edge" to scipy
+        top = float(np.nanmax(w)) + 1.0
+        cost = np.triu(top - np.nan_to_num(w, nan=0.0), 1)
+        tree = minimum_spanning_tree(cost)
+        best = max(best, top - float(tree.data.max()))
+    return best

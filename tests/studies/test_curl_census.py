@@ -43,9 +43,11 @@ def test_pairwise_interactions_dominate(tmp_path):
         t = stats["criteria"][crit]
         mean = dict(zip(t["N"], t["mean"], strict=True))
         assert all(mean[2] >= v for v in mean.values()), (crit, mean)
-    for crit in ("crossing", "contact"):
+    for crit in ("crossing", "contact", "link_auto"):
         t = stats["criteria"][crit]
-        assert t["mean"][0] > 0 and all(t["mean"][0] > v for v in t["mean"][1:])
+        assert t["mean"][0] > 0 and all(t["mean"][0] > v for v in t["mean"][1:]), (crit, t["mean"])
+    # the thesis's threshold rule, applied to these nearly straight curls, picks a threshold far below its 0.4
+    assert 0 < stats["lk_threshold_auto"] < stats["layer_lk_quantiles"]["100"] < 0.4
     paths = write_census(stats, tmp_path)
     plot_census(stats, tmp_path / "census.png")
     assert all(p.exists() for p in paths) and (tmp_path / "census.png").stat().st_size > 0

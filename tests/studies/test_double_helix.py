@@ -125,9 +125,13 @@ def test_reduced_run_topology(reduced_run):
     behind = (frac > 0.05) & (frac < s_tine_frac - 0.05)
     assert np.median(dl[ahead]) > 0.0
     assert np.median(dl[behind]) < 0.0
-    # link current grows in magnitude, then plateaus (Fig. 2.8)
+    # link current grows in magnitude, then plateaus (Fig. 2.8) until the tine breaks out at the free end, where the
+    # last links leave at once (the force drops to 0 there; D counts on to the last light touch of the free ends)
+    release = r.x[np.flatnonzero(r.f >= 0.5 * r.f_max)[-1]]
+    assert release > 0.45
     early = np.abs(r.current[(r.x > 0.0) & (r.x < 0.06)]).mean()
-    late = np.abs(r.current[(r.x > 0.3) & (r.x < 0.6)])
+    # the current is a 5-sample moving average (run_combing), so the jump leaks ~3 samples (0.05 in x) before it
+    late = np.abs(r.current[(r.x > 0.3) & (r.x < release - 0.1)])
     assert late.mean() > 2 * early
     assert late.std() < 0.2 * late.mean()
 
@@ -153,25 +157,38 @@ def test_reduced_pitch_trend():
     assert tight.f_max > 2.0 * loose.f_max
 
 
-@pytest.mark.slow
-@pytest.mark.xfail(
-    strict=True,
-    reason="known gap (issue #7): halving the tine speed (0.02 -> 0.01 m/s) lowers f_max from 3.77 to 3.05 "
-    "(-19 %) on the reduced P/r = 36 helix, so the 0.02 m/s combing is not quasi-static to 15 % (measured)",
-)
 def test_quasi_static_speed_independence():
+    """At the default 5 mm/s the combing force is quasi-static: halving the speed changes f_max by < 5 %.
+
+    (At the former 20 mm/s default, halving lowered f_max by 19 %: 3.77 -> 3.05 on this helix.)
+    """
     base = CombingSetup(P_over_r=36, **REDUCED)
     fast = run_combing(base)
     slow = run_combing(replace_setup(base, speed=base.speed / 2))
-    assert slow.f_max == pytest.approx(fast.f_max, rel=0.15)
+    assert slow.f_max == pytest.approx(fast.f_max, rel=0.05)
+
+
+@pytest.fixture(scope="module")
+def full_size_runs() -> dict[tuple[float, float], CombingResult]:
+    """Full-size (15 cm, 10 edges/pitch) helices at mid-height insertion, keyed by (P/r, R/r)."""
+    keys = [(18, 1), (48, 1), (24, 1), (24, 3)]
+    return {k: run_combing(CombingSetup(P_over_r=k[0], R_over_r=k[1])) for k in keys}
 
 
 @pytest.mark.slow
-def test_full_size_claims():
-    """Claims 1 (P/r part) and 2 on full-size (15 cm, 10 edges/pitch) helices at mid-height insertion.
+def test_full_size_claim_1(full_size_runs):
+    """Claim 1 on full-size helices: f_max falls as P/r grows (18 -> 48) and as R/r grows (1 -> 3)."""
+    res = full_size_runs
+    assert res[18, 1].f_max > 5 * res[48, 1].f_max  # measured 34.5 vs 3.25
+    assert res[24, 1].f_max > 1.2 * res[24, 3].f_max  # measured 18.9 vs 13.7
 
-    The R/r trend of claim 1 is not reproduced by this model (README), so it is not asserted here.
-    """
-    res = {p: run_combing(CombingSetup(P_over_r=p)) for p in (18, 48)}
-    assert res[18].f_max > 5 * res[48].f_max
-    assert res[18].jammed and not res[48].jammed
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    reason="known gap (issue #7): quasi-statically (5 mm/s) the tight P/r = 18 helix does not jam at mid-height "
+    "insertion (force rises to a plateau, peak/level 1.01); its jam-like peak at 20 mm/s was dynamic (README)",
+)
+def test_full_size_claim_2_tight_helices_jam(full_size_runs):
+    res = full_size_runs
+    assert res[18, 1].jammed and not res[48, 1].jammed

@@ -4,8 +4,16 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from scipy.sparse.csgraph import connected_components
 
-from hairbrush_env.topology import clip_to_slab, double_helix, interaction_census
+from hairbrush_env.topology import (
+    clip_to_slab,
+    double_helix,
+    empirical_lk_threshold,
+    interaction_census,
+    layer_link_matrices,
+    link_census_from_matrices,
+)
 
 
 def line(p, q, n=11):
@@ -101,3 +109,65 @@ def test_census_bad_input():
         interaction_census(bundle(), axis=3)
     with pytest.raises(ValueError, match=r"strands\[1\]"):
         interaction_census([bundle()[0], np.zeros((3, 2))])
+
+
+def wound_bundle(seed=0, n=5):
+    """Strands that wander and wind around each other a little: random smooth lateral paths around a lattice."""
+    rng = np.random.default_rng(seed)
+    z = np.linspace(0, -1, 201)
+    out = []
+    for k in range(n):
+        phase = rng.uniform(0, 2 * np.pi, 3)
+        amp = rng.uniform(0.01, 0.03, 3)
+        waves = [2 * np.pi * (m + 1) * 3 * z + p for m, p in enumerate(phase)]
+        x = 0.02 * k + sum(a * np.cos(w) for a, w in zip(amp, waves, strict=True))
+        y = sum(a * np.sin(w) for a, w in zip(amp, waves, strict=True))
+        out.append(np.column_stack([x, y, z]))
+    return out
+
+
+def test_layer_link_matrices_give_the_link_census():
+    strands = wound_bundle()
+    mats, extent = layer_link_matrices(strands, n_layers=10)
+    assert mats.shape == (10, 5, 5) and extent == pytest.approx(1.0)
+    np.testing.assert_allclose(mats, np.transpose(mats, (0, 2, 1)))
+    for t in (0.0, 0.01, 0.05, 0.2):
+        assert link_census_from_matrices(mats, t, extent) == pytest.approx(
+            interaction_census(strands, n_layers=10, criterion="link", lk_threshold=t)
+        )
+    # a strand absent from a layer gets NaN there and never interacts
+    short = [*strands[:4], strands[4][:60]]
+    m2, _ = layer_link_matrices(short, n_layers=10)
+    assert np.isnan(m2[0, 4]).all() and np.isfinite(m2[0, :4, :4]).all()  # layer 0 is the bottom (z ≈ −1)
+
+
+def _largest_cluster_fraction(mats, t):
+    worst = 0.0
+    for m in mats:
+        present = ~np.isnan(np.diag(m))
+        w = m[np.ix_(present, present)] > t
+        np.fill_diagonal(w, False)
+        n_comp, _ = connected_components(w, directed=False)
+        worst = max(worst, float(n_comp == 1))
+    return worst
+
+
+def test_empirical_threshold_is_the_smallest_without_an_all_strand_cluster():
+    mats = np.concatenate([layer_link_matrices(wound_bundle(seed), n_layers=10)[0] for seed in range(3)])
+    m = empirical_lk_threshold(mats)
+    assert m > 0
+    assert _largest_cluster_fraction(mats, m) == 0.0  # at m: no layer is one cluster of every strand
+    assert _largest_cluster_fraction(mats, m * (1 - 1e-9)) == 1.0  # just below: some layer is
+    # the same answer by brute force over the distinct |Lk| values
+    values = np.unique(mats[np.isfinite(mats) & (mats > 0)])
+    brute = min([0.0, *values], key=lambda t: (_largest_cluster_fraction(mats, t), t))
+    assert m == pytest.approx(brute)
+    # unlinked straight strands: nothing to segregate
+    straight = [
+        np.column_stack([np.full(11, 0.1 * k), np.zeros(11), np.linspace(0, 1, 11)]) for k in range(3)
+    ]
+    assert empirical_lk_threshold(layer_link_matrices(straight, n_layers=5)[0]) == 0.0
+    with pytest.raises(ValueError, match="mats"):
+        empirical_lk_threshold(np.zeros((3, 2)))
+    with pytest.raises(ValueError, match="threshold"):
+        link_census_from_matrices(mats, -1.0, 1.0)
