@@ -14,8 +14,8 @@ Census: :func:`hairbrush_env.topology.interaction_census` on the relaxed centerl
 and ``link`` (|Lk| of the pieces in a layer > 0.4, Fig. 2.5b). Results are averaged over seeds with standard errors.
 
 The thesis picked 0.4 as "roughly the smallest linking threshold that provides nontrivial segregation of interaction
-types" in its curls. In ours no layer pair reaches 0.4 (max ≈ 0.17), so that criterion counts nothing. The census
-therefore also reports ``link_auto``: the same rule applied to these curls
+types" in its curls. In ours no layer pair reaches 0.4 (max 0.19 over 4 curls), so that criterion counts nothing.
+The census therefore also reports ``link_auto``: the same rule applied to these curls
 (:func:`~hairbrush_env.topology.empirical_lk_threshold`, one threshold for all seeds — the smallest at which no layer
 has all hairs in one cluster), with the threshold in ``stats["lk_threshold_auto"]``.
 

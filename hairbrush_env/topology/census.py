@@ -87,14 +87,13 @@ def _segments_cross_2d(a: np.ndarray, b: np.ndarray) -> bool:
     return bool(hit.any())
 
 
-def _interact(pa, pb, criterion, axis, lk_threshold, contact_distance) -> bool:
+def _interact(pa, pb, criterion, axis, contact_distance) -> bool:
+    """The ``"crossing"`` and ``"contact"`` criteria for two strands' pieces in one layer (``"link"`` goes through
+    :func:`layer_link_matrices`)."""
     if criterion == "crossing":
         keep = [axis, (axis + 1) % 3]
         return any(_segments_cross_2d(x[:, keep], y[:, keep]) for x in pa for y in pb)
-    if criterion == "contact":
-        return any(min_segment_distance(x, y) < contact_distance for x in pa for y in pb)
-    lk = sum(pair_matrix(x, y)[0].sum() for x in pa for y in pb)
-    return abs(lk) > lk_threshold
+    return any(min_segment_distance(x, y) < contact_distance for x in pa for y in pb)
 
 
 def interaction_census(
@@ -119,20 +118,16 @@ def interaction_census(
     """
     if criterion not in ("crossing", "contact", "link"):
         raise ValueError(f"criterion: expected 'crossing', 'contact' or 'link', got {criterion!r}")
-    if axis not in (0, 1, 2):
-        raise ValueError(f"axis: expected 0, 1 or 2, got {axis!r}")
-    if int(n_layers) != n_layers or n_layers < 1:
-        raise ValueError(f"n_layers: expected a positive integer, got {n_layers!r}")
     if criterion == "contact" and (contact_distance is None or not contact_distance > 0):
         raise ValueError(
             f"contact_distance: criterion='contact' needs a positive distance, got {contact_distance!r}"
         )
-    if criterion == "link" and not lk_threshold >= 0:
-        raise ValueError(f"lk_threshold: must be >= 0, got {lk_threshold!r}")
-    curves = [as_curve(s, f"strands[{i}]") for i, s in enumerate(strands)]
-    if len(curves) < 2:
-        raise ValueError(f"strands: need at least 2 strands, got {len(curves)}")
-    edges, extent = _layers(curves, n_layers, axis)
+    if criterion == "link":
+        if not lk_threshold >= 0:
+            raise ValueError(f"lk_threshold: must be >= 0, got {lk_threshold!r}")
+        mats, extent = layer_link_matrices(strands, n_layers=n_layers, axis=axis)
+        return link_census_from_matrices(mats, lk_threshold, extent)
+    curves, edges, extent = _layered_curves(strands, n_layers, axis)
     counts: dict[int, int] = {}
     for lo, hi in itertools.pairwise(edges):
         pieces = [clip_to_slab(c, axis, lo, hi) for c in curves]
@@ -142,7 +137,7 @@ def interaction_census(
                 if (
                     pieces[i]
                     and pieces[j]
-                    and _interact(pieces[i], pieces[j], criterion, axis, lk_threshold, contact_distance)
+                    and _interact(pieces[i], pieces[j], criterion, axis, contact_distance)
                 ):
                     rows.append(i)
                     cols.append(j)
@@ -166,12 +161,22 @@ def _per_metre(counts: dict[int, int], length: float) -> dict[int, float]:
     return {n: counts.get(n, 0) / length for n in range(2, top + 1)}
 
 
-def _layers(curves: list[np.ndarray], n_layers: int, axis: int) -> tuple[np.ndarray, float]:
+def _layered_curves(
+    strands: Sequence[np.ndarray], n_layers: int, axis: int
+) -> tuple[list[np.ndarray], np.ndarray, float]:
+    """Validated curves, the layer edges along ``axis`` and the bundle's extent."""
+    if axis not in (0, 1, 2):
+        raise ValueError(f"axis: expected 0, 1 or 2, got {axis!r}")
+    if int(n_layers) != n_layers or n_layers < 1:
+        raise ValueError(f"n_layers: expected a positive integer, got {n_layers!r}")
+    curves = [as_curve(s, f"strands[{i}]") for i, s in enumerate(strands)]
+    if len(curves) < 2:
+        raise ValueError(f"strands: need at least 2 strands, got {len(curves)}")
     coords = np.concatenate([c[:, axis] for c in curves])
     z0, z1 = float(coords.min()), float(coords.max())
     if z1 <= z0:
         raise ValueError("strands: the bundle has zero extent along the axis")
-    return np.linspace(z0, z1, int(n_layers) + 1), z1 - z0
+    return curves, np.linspace(z0, z1, int(n_layers) + 1), z1 - z0
 
 
 def layer_link_matrices(
@@ -183,14 +188,7 @@ def layer_link_matrices(
     k| (symmetric; NaN where strand i or j has no piece in the layer, 0 on the diagonal), the quantity that the
     ``"link"`` criterion of :func:`interaction_census` compares with its threshold.
     """
-    if axis not in (0, 1, 2):
-        raise ValueError(f"axis: expected 0, 1 or 2, got {axis!r}")
-    if int(n_layers) != n_layers or n_layers < 1:
-        raise ValueError(f"n_layers: expected a positive integer, got {n_layers!r}")
-    curves = [as_curve(s, f"strands[{i}]") for i, s in enumerate(strands)]
-    if len(curves) < 2:
-        raise ValueError(f"strands: need at least 2 strands, got {len(curves)}")
-    edges, extent = _layers(curves, n_layers, axis)
+    curves, edges, extent = _layered_curves(strands, n_layers, axis)
     n = len(curves)
     mats = np.full((int(n_layers), n, n), np.nan)
     for k, (lo, hi) in enumerate(itertools.pairwise(edges)):
