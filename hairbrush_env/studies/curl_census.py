@@ -222,19 +222,25 @@ def simulate_curl(setup: CurlSetup, seed: int = 0) -> list[np.ndarray]:
 
 def census_of(strands: Sequence[np.ndarray], setup: CurlSetup) -> dict[str, dict[int, float]]:
     """``{criterion: {N: ρ_N}}`` for the three criteria (interactions per metre of curl)."""
-    from ..topology import interaction_census
+    return _census_and_link_matrices(strands, setup)[0]
+
+
+def _census_and_link_matrices(strands: Sequence[np.ndarray], setup: CurlSetup):
+    """The census and the layers' |Lk| matrices it was counted from (computed once, also for the threshold rule)."""
+    from ..topology import interaction_census, layer_link_matrices, link_census_from_matrices
 
     out = {}
-    for crit in CRITERIA:
+    for crit in ("crossing", "contact"):
         out[crit] = interaction_census(
             strands,
             n_layers=setup.n_layers,
             criterion=crit,
-            lk_threshold=setup.lk_threshold,
             contact_distance=2.0 * setup.radius * setup.contact_factor,
             axis=2,
         )
-    return out
+    mats, extent = layer_link_matrices(strands, n_layers=setup.n_layers, axis=2)
+    out["link"] = link_census_from_matrices(mats, setup.lk_threshold, extent)
+    return out, mats, extent
 
 
 _POINT_VERSION = 2  # 2: results carry the layers' |Lk| matrices (older cache files are recomputed)
@@ -243,13 +249,10 @@ _POINT_VERSION = 2  # 2: results carry the layers' |Lk| matrices (older cache fi
 def run_point(point: dict[str, Any]) -> dict[str, Any]:
     """Sweep worker: ``{"setup": asdict(CurlSetup), "seed": int, "version": 2}`` → census (JSON keys are strings)
     plus ``"link_matrices"`` (layers × hairs × hairs |Lk|, NaN → None) and ``"extent"`` for the threshold rule."""
-    from ..topology import layer_link_matrices
-
     setup = CurlSetup(**point["setup"])
     strands = simulate_curl(setup, seed=int(point["seed"]))
-    cen = census_of(strands, setup)
+    cen, mats, extent = _census_and_link_matrices(strands, setup)
     out: dict[str, Any] = {crit: {str(n): v for n, v in c.items()} for crit, c in cen.items()}
-    mats, extent = layer_link_matrices(strands, n_layers=setup.n_layers, axis=2)
     out["link_matrices"] = np.where(np.isnan(mats), None, mats).tolist()
     out["extent"] = extent
     return out
