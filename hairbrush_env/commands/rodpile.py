@@ -89,7 +89,7 @@ def _cmd_rodpile_generate(args: argparse.Namespace) -> int:
         p = generate_packing(
             args.n_rods, args.length, d, container_diameter=args.container * args.length, seed=args.seed,
             jostle=not args.no_jostle, batch_size=args.batch, friction=args.friction, progress=not args.quiet,
-            freeze_depth=args.freeze_depth, terminal_speed=args.terminal_speed, placement=args.placement,
+            wall_friction=args.wall_friction, freeze_depth=args.freeze_depth, terminal_speed=args.terminal_speed, placement=args.placement,
         )  # fmt: skip
     except ValueError as exc:
         raise SystemExit(f"hairbrush rodpile generate: {exc}") from exc
@@ -304,6 +304,9 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
         "--container", type=float, default=3.0, help="container diameter in rod lengths (default 3)"
     )
     g.add_argument("--friction", type=float, default=0.4)
+    g.add_argument(
+        "--wall-friction", type=float, default=None, help="rod–wall/floor friction (default: --friction)"
+    )
     g.add_argument("--batch", type=int, default=10, help="rods dropped together (default 10)")
     g.add_argument("--seed", type=int, default=0)
     g.add_argument("--no-jostle", action="store_true")

@@ -489,8 +489,8 @@ class _Pile:
                 name=f"wall{k}", type=mujoco.mjtGeom.mjGEOM_BOX,
                 size=[t / 2, r * math.tan(math.pi / nwall) * 1.05, wall_h / 2],
                 pos=[(r + t / 2) * math.cos(a), (r + t / 2) * math.sin(a), wall_h / 2],
-                quat=[math.cos(a / 2), 0, 0, math.sin(a / 2)], friction=wfr, **common,
-            )  # fmt: skip
+                quat=[math.cos(a / 2), 0, 0, math.sin(a / 2)], friction=wfr, priority=1, **common,
+            )  # fmt: skip  (priority: MuJoCo otherwise takes the larger of the two geoms' friction)
         cont.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_BOX, size=[1.2 * r + t, 1.2 * r + t, t / 2],
                       pos=[0, 0, -t / 2], friction=fr, **common)  # fmt: skip
         half = (sp.length - d) / 2
@@ -714,18 +714,20 @@ def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float,
     return np.array(out)
 
 
-def _jostle(pile: _Pile, rng, n_shakes: int, tilt_deg: float) -> None:
+def _jostle(pile: _Pile, rng, n_shakes: int, tilt_deg: float, hop: float | None = None) -> None:
     """Shake and tilt the container, simulated in the container's frame (§4.5.1 "jostled ... inverted").
 
     In the frame of a container that translates with acceleration a(t) and tilts slowly, the rods feel the effective
     gravity g − a(t) rotated by the tilt; the fictitious rotational forces are negligible for slow tilts. So instead
     of moving the walls (a teleported mocap container pushes rods through each other), we vary gravity: magnitude
-    g(1 + 1.2 sin ωt) — the pile is thrown up ~1 d each period — while its direction tilts by up to ``tilt_deg``
-    about a random horizontal axis and back. Then everything settles under normal gravity.
+    g(1 + 1.2 sin ωt) — the pile is thrown up by about ``hop`` (default one rod diameter) each period — while its
+    direction tilts by up to ``tilt_deg`` about a random horizontal axis and back. Then everything settles under
+    normal gravity. The period scales with √(hop/g), so a larger hop is a slower, larger-amplitude shake.
     """
     sp = pile.sp
     opt = pile.model.opt
-    period = 12.6 * math.sqrt(sp.diameter / GRAVITY)  # free-flight time of a ~1 d hop at 0.2 g net lift
+    hop = sp.diameter if hop is None else hop
+    period = 12.6 * math.sqrt(hop / GRAVITY)  # free-flight time of a ~hop-high jump at 0.2 g net lift
     omega = 2 * math.pi / period
     nsteps = int(5 * period / sp.dt)
     for _ in range(n_shakes):
@@ -755,6 +757,7 @@ def generate_packing(
     n_shakes: int = 2,
     tilt_deg: float = 20.0,
     friction: float = 0.4,
+    wall_friction: float | None = None,
     freeze_depth: float | None = None,
     terminal_speed: float = 0.25,
     placement: str = "centered",
@@ -780,6 +783,9 @@ def generate_packing(
         Shakes per jostle episode and the tilt of the container during a shake.
     friction : float
         Coulomb friction coefficient (steel on steel ≈ 0.3–0.5).
+    wall_friction : float, optional
+        Friction of rods on the container wall and floor (default: ``friction``). The experiments used an acrylic
+        container; frictional walls carry part of the pile's weight (Janssen effect).
     freeze_depth : float, optional
         Speed-up for tall piles, in rod lengths (e.g. 1.0): while rods are being added, rods lying entirely more
         than ``freeze_depth·L`` below the current pile top are made static (they carry the rods above but are not
@@ -824,7 +830,11 @@ def generate_packing(
     if freeze_depth is not None and not (math.isfinite(freeze_depth) and freeze_depth > 0):
         raise ValueError(f"freeze_depth: must be > 0 (rod lengths) or None, got {freeze_depth!r}")
     t_wall = time.perf_counter()  # only reported in meta; never used in the simulation
-    sp = SimParams(length, diameter, cdia, friction=friction, terminal_speed=terminal_speed)
+    if wall_friction is not None and not (math.isfinite(wall_friction) and wall_friction >= 0):
+        raise ValueError(f"wall_friction: must be ≥ 0 or None, got {wall_friction!r}")
+    sp = SimParams(
+        length, diameter, cdia, friction=friction, terminal_speed=terminal_speed, wall_friction=wall_friction
+    )
     rng = np.random.default_rng(seed)
     ep = np.zeros((0, 2, 3))
     jostle_at = {round(n_rods * 0.5)} if jostle else set()
@@ -863,6 +873,7 @@ def generate_packing(
     meta = {
         "generator": "hairbrush_env.studies.rod_pile.generate_packing",
         "seed": int(seed), "jostle": bool(jostle), "batch_size": int(batch_size), "friction": float(friction),
+        "wall_friction": None if wall_friction is None else float(wall_friction),
         "freeze_depth": None if freeze_depth is None else float(freeze_depth),
         "terminal_speed": float(terminal_speed), "max_frozen": max_frozen, "placement": placement,
         "length": float(length), "contact_pairs": pairs.tolist(),

@@ -200,3 +200,24 @@ def test_tension_separates_and_energy_is_positive(pile):
     assert res.load.max() > res.lifted_weight.max()
     # after separation the plate carries the hanging part only: load → hanging weight (within 25 %)
     assert res.load[-1] == pytest.approx(res.hanging_weight, rel=0.25)
+
+
+@pytest.mark.parametrize(("wall_friction", "held"), [(0.0, False), (3.0, True)])
+def test_wall_friction_is_the_walls_own(wall_friction, held):
+    # A vertical rod pressed against the wall by a sideways gravity component 5 g slides down unless μ_wall ≥ 0.2.
+    # MuJoCo gives a contact the larger of the two geoms' friction unless priorities differ, so without the walls'
+    # priority the rods' μ = 0.4 would hold the rod on a frictionless wall.
+    from hairbrush_env.studies.rod_pile import SimParams, _Pile
+
+    d = L / ALPHA
+    sp = SimParams(L, d, 1.5 * L, wall_friction=wall_friction)
+    z0 = L / 2 + 0.2 * L
+    pile = _Pile(sp, np.array([[0.75 * L - 0.51 * d, 0.0, z0]]), np.array([[1.0, 0.0, 0.0, 0.0]]))
+    pile.set_drag(False)
+    pile.model.opt.gravity[:] = [5 * 9.81, 0.0, -9.81]
+    pile.step(int(0.1 / sp.dt))  # free fall to the floor takes 0.045 s
+    z = pile.data.xpos[pile.body_of_rod[0], 2]
+    if held:
+        assert z > z0 - 0.05 * L  # MuJoCo's soft friction lets it creep (≈ 0.03 L here), not slide
+    else:
+        assert z < L / 2 + 0.02 * L  # slid down onto the floor
