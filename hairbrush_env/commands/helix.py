@@ -118,7 +118,7 @@ def _add_helix(sub: argparse._SubParsersAction) -> None:
         action="append",
         metavar="KEY=VALUE",
         help="override a CombingSetup field, e.g. --set P_over_r=18 --set q=4 (repeatable; q=none = midpoint, "
-        "q=clamp = one pitch below the clamp)",
+        "q=clamp = half a pitch below the clamp)",
     )
     common.add_argument("--out", default="runs/helix", help="output directory (default: runs/helix)")
     run = hsub.add_parser(

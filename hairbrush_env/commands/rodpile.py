@@ -89,7 +89,8 @@ def _cmd_rodpile_generate(args: argparse.Namespace) -> int:
         p = generate_packing(
             args.n_rods, args.length, d, container_diameter=args.container * args.length, seed=args.seed,
             jostle=not args.no_jostle, batch_size=args.batch, friction=args.friction, progress=not args.quiet,
-            wall_friction=args.wall_friction, freeze_depth=args.freeze_depth, terminal_speed=args.terminal_speed, placement=args.placement,
+            wall_friction=args.wall_friction, freeze_depth=args.freeze_depth, terminal_speed=args.terminal_speed,
+            placement=args.placement,
         )  # fmt: skip
     except ValueError as exc:
         raise SystemExit(f"hairbrush rodpile generate: {exc}") from exc

@@ -164,10 +164,10 @@ class CombingSetup:
             raise ValueError(f"CombingSetup.samples must be an integer >= 10, got {self.samples!r}")
         if self.q is not None:
             check("q", 0.0)
-            if self.q * self.pitch >= self.height - self.pitch:
+            if self.q * self.pitch >= self.height - 0.5 * self.pitch:
                 raise ValueError(
-                    f"CombingSetup.q must leave at least one pitch above the tine: q·P = {self.q * self.pitch:.4g} m "
-                    f"but height = {self.height:.4g} m (raise height)"
+                    "CombingSetup.q must leave at least half a pitch above the tine: "
+                    f"q·P = {self.q * self.pitch:.4g} m but height = {self.height:.4g} m (raise height)"
                 )
         if not all(0.0 <= x < 1.0 for x in self.snapshot_x):
             raise ValueError(f"CombingSetup.snapshot_x must lie in [0, 1), got {self.snapshot_x!r}")
@@ -200,12 +200,14 @@ class CombingSetup:
         return 0.5 * self.height if self.q is None else self.height - self.q * self.pitch
 
     def q_near_clamp(self) -> float:
-        """The largest q allowed: the tine enters just over one pitch below the clamp.
+        """The largest q allowed: the tine enters just over half a pitch below the clamp.
 
         The thesis's simulations insert the tine "close to the clamped end" (§2.3); only then can one stroke expel
-        nearly all the link, because the link between clamp and tine cannot pass the tine (``lk_above``).
+        nearly all the link, because the link between clamp and tine cannot pass the tine (``lk_above``, about
+        half a link here). Half a pitch is as close as the insertion opening allows: it is a Gaussian of width
+        P/4 (``_bulge``), so at the clamp it is down to 2 % and the clamped ends stay on the helix.
         """
-        return self.height / self.pitch - 1.01
+        return self.height / self.pitch - 0.51
 
     @property
     def q_effective(self) -> float:

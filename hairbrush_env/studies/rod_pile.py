@@ -483,6 +483,8 @@ class _Pile:
         t = 0.2 * sp.length
         cont = spec.worldbody.add_body(name="container")  # static
         nwall = 64 if walls else 0
+        # priority 1: MuJoCo otherwise gives a contact the larger of the two geoms' friction, so the rods' μ would
+        # override a lower wall friction
         for k in range(nwall):
             a = 2 * math.pi * k / nwall
             cont.add_geom(
@@ -490,7 +492,7 @@ class _Pile:
                 size=[t / 2, r * math.tan(math.pi / nwall) * 1.05, wall_h / 2],
                 pos=[(r + t / 2) * math.cos(a), (r + t / 2) * math.sin(a), wall_h / 2],
                 quat=[math.cos(a / 2), 0, 0, math.sin(a / 2)], friction=wfr, priority=1, **common,
-            )  # fmt: skip  (priority: MuJoCo otherwise takes the larger of the two geoms' friction)
+            )  # fmt: skip
         cont.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_BOX, size=[1.2 * r + t, 1.2 * r + t, t / 2],
                       pos=[0, 0, -t / 2], friction=fr, **common)  # fmt: skip
         half = (sp.length - d) / 2

@@ -49,17 +49,17 @@ def test_replace_setup_parses_cli_strings():
         replace_setup(s, nope="1")
 
 
-def test_insertion_near_the_clamp_traps_about_one_link():
-    """``q=clamp`` (the thesis's simulated insertion "close to the clamped end"): just over one pitch stays above
-    the tine, so about one link is trapped there (lk_above) and the rest can be combed out."""
+def test_insertion_near_the_clamp_traps_about_half_a_link():
+    """``q=clamp`` (the thesis's simulated insertion "close to the clamped end"): just over half a pitch stays
+    above the tine, so about half a link is trapped there (lk_above) and the rest can be combed out."""
     base = CombingSetup(P_over_r=36, **REDUCED)
     s = replace_setup(base, q="clamp")
-    assert s.q == pytest.approx(s.height / s.pitch - 1.01)
+    assert s.q == pytest.approx(s.height / s.pitch - 0.51)
     assert replace_setup(base, q="clamp", P_over_r=24).q == pytest.approx(
-        base.height / (24 * base.radius) - 1.01
+        base.height / (24 * base.radius) - 0.51
     )
     res = run_combing(s)
-    assert res.lk_above == pytest.approx(1.0, abs=0.15)
+    assert res.lk_above == pytest.approx(0.5, abs=0.15)
     assert res.lk_end < res.lk_above + 0.1 * res.lk0  # all but ≤ 10 % of Lk0 of the combable link leaves
 
 
@@ -192,3 +192,15 @@ def test_full_size_claim_1(full_size_runs):
 def test_full_size_claim_2_tight_helices_jam(full_size_runs):
     res = full_size_runs
     assert res[18, 1].jammed and not res[48, 1].jammed
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("p_over_r", [24, 36])
+def test_full_size_claim_3_total_link_leaves(p_over_r):
+    """Claim 3 on full-size helices with the thesis's insertion near the clamp: total Lk ends at ≤ 10 % of Lk0.
+
+    Measured (README): 9.2 / 4.8 / 7.3 / 9.97 % for P/r = 18 / 24 / 36 / 48; the two with margin run here.
+    """
+    res = run_combing(replace_setup(CombingSetup(P_over_r=p_over_r), q="clamp"))
+    assert res.lk_above < 0.65  # about half a link is trapped between clamp and tine
+    assert abs(res.lk_end) <= 0.10 * res.lk0
