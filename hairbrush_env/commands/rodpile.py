@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 
@@ -53,6 +54,7 @@ def _rodpile_summary(p) -> dict:
         "mean_contacts_all": float(c.mean()), "mean_contacts_bulk": cb,
         "n_bulk_rods": int(bulk.sum()), "philipse_contacts": philipse_contact_number(phi, alpha),
         "contacts_bulk_over_philipse": cb / philipse_contact_number(phi, alpha),
+        "contacts_bulk_over_philipse_inner": cb / philipse_contact_number(phi_in, alpha) if wide else math.nan,
         "mean_abs_sin_bulk": msin, "philipse_contacts_oriented": philipse_contact_number(phi, alpha, msin),
         "phi_seen_by_bulk_rods": phi_b, "philipse_contacts_local": philipse_contact_number(phi_b, alpha),
         "contacts_bulk_over_philipse_local": cb / philipse_contact_number(phi_b, alpha),
@@ -66,7 +68,8 @@ def _rodpile_summary(p) -> dict:
 def _print_summary(tag: str, s: dict) -> None:
     print(
         f"{tag}: n={s['n_rods']} α={s['alpha']:.1f} H={s['height'] * 1e3:.1f} mm ({s['height_over_L']:.2f} L) "
-        f"φ_f={s['phi_f']:.4f} φα={s['phi_alpha']:.2f} (inner {s['phi_alpha_inner']:.2f}) "
+        f"φ_f={s['phi_f']:.4f} φα={s['phi_alpha']:.2f} (bulk, ≥ L/2 from the wall: {s['phi_alpha_inner']:.2f}; "
+        f"⟨c⟩bulk / Philipse there {s['contacts_bulk_over_philipse_inner']:.2f}) "
         f"⟨c⟩bulk={s['mean_contacts_bulk']:.2f} (all {s['mean_contacts_all']:.2f}) "
         f"Philipse={s['philipse_contacts']:.2f} (measured orientations {s['philipse_contacts_oriented']:.2f}; "
         f"at the φα={s['phi_seen_by_bulk_rods'] * s['alpha']:.2f} around bulk rods {s['philipse_contacts_local']:.2f}) "
@@ -118,6 +121,14 @@ def _cmd_rodpile_summary(args: argparse.Namespace) -> int:
     if args.out:
         write_json(args.out, rows)
         print(f"wrote {args.out}")
+    if args.plot:
+        from ..studies.rod_pile import plot_phi_alpha
+
+        bulk = [r["phi_f_inner"] for r in rows]
+        plot_phi_alpha([r["alpha"] for r in rows], [r["phi_f"] for r in rows], args.plot,
+                       contacts=[r["mean_contacts_bulk"] for r in rows],
+                       phi_bulk=None if any(math.isnan(b) for b in bulk) else bulk)  # fmt: skip
+        print(f"wrote {args.plot}")
     return 0
 
 
@@ -336,6 +347,7 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     sm = rsub.add_parser("summary", help="φ_f α, contacts vs Philipse, orientations, profiles of saved piles")
     sm.add_argument("piles", nargs="+", help="packing files (.npz / CSV)")
     sm.add_argument("--out", default=None, help="write the summaries as JSON")
+    sm.add_argument("--plot", default=None, help="draw φ_f α and ⟨c⟩ vs α of these piles (PNG)")
     sm.set_defaults(func=_cmd_rodpile_summary)
 
     s = rsub.add_parser("sweep", help="φ_f and ⟨c⟩ vs aspect ratio (Fig. 4.5); resumable")

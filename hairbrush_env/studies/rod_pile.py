@@ -1383,26 +1383,41 @@ def plot_structure(packings: dict, path: str | Path) -> Path:
     return Path(path)
 
 
-def plot_phi_alpha(alpha, phi, path: str | Path, *, contacts=None) -> Path:
-    """φ_f vs α with φα = const curves (Fig. 4.5), and optionally ⟨c⟩ vs Philipse's equation."""
+def plot_phi_alpha(alpha, phi, path: str | Path, *, contacts=None, phi_bulk=None) -> Path:
+    """φ_f α vs α (Fig. 4.5: φ_f α ≈ const), and optionally ⟨c⟩ vs Philipse's equation.
+
+    ``phi`` is the container-averaged φ_f; ``phi_bulk`` (optional) the bulk value away from the wall layer
+    (inner cylinder R − L/2, :func:`packing_fraction` with ``wall_margin``). Philipse's prediction uses the bulk
+    φ when given (the contacts are counted on bulk rods), else φ_f.
+    """
     from ..viz import PALETTE, new_figure, save_figure
 
     alpha, phi = np.asarray(alpha, float), np.asarray(phi, float)
+    order = np.argsort(alpha)
     ncols = 2 if contacts is not None else 1
     fig, axes = new_figure(ncols, 1, width=4.6, height=3.6)
     ax = axes[0, 0]
-    ax.plot(alpha, phi, "o", color=PALETTE[0], label="simulated piles")
-    x = np.linspace(0.8 * alpha.min(), 1.2 * alpha.max(), 100)
-    for k, c in enumerate((3.0, 4.0, 6.0)):
-        ax.plot(x, c / x, ls=":", color=PALETTE[k + 1], label=f"φα = {c:g}")
-    ax.set(xlabel="aspect ratio α", ylabel="packing fraction φ_f", title="Fig. 4.5")
-    ax.legend(fontsize=8)
+    ax.axhspan(3.0, 6.0, color="0.92", label="real random rod packings (3–6)")
+    ax.axhline(3.2, ls=":", color=PALETTE[3], label="thesis Fig. 4.5 fit (3.2)")
+    ax.plot(
+        alpha[order], (phi * alpha)[order], "o--", mfc="none", color=PALETTE[0], label="container average"
+    )
+    if phi_bulk is not None:
+        pb = np.asarray(phi_bulk, float)
+        ax.plot(alpha[order], (pb * alpha)[order], "o-", color=PALETTE[1], label="bulk (≥ L/2 from the wall)")
+    top = max(6.5, float(np.nanmax(phi * alpha)) * 1.1)
+    ax.set(xlabel="aspect ratio α", ylabel="φ_f α", title="Fig. 4.5", ylim=(0, top))
+    ax.legend(fontsize=7)
     if contacts is not None:
         ax2 = axes[0, 1]
-        pred = [philipse_contact_number(p, a) for p, a in zip(phi, alpha, strict=True)]
-        ax2.plot(alpha, contacts, "o", color=PALETTE[0], label="simulated ⟨c⟩ (bulk rods)")
-        ax2.plot(alpha, pred, "s", mfc="none", color=PALETTE[1], label="Philipse: φ(6α²+24α+16)/(3α+2)")
-        ax2.set(xlabel="aspect ratio α", ylabel="⟨c⟩")
-        ax2.legend(fontsize=8)
+        ref = phi if phi_bulk is None else np.asarray(phi_bulk, float)
+        pred = np.array([philipse_contact_number(p, a) for p, a in zip(ref, alpha, strict=True)])
+        c = np.asarray(contacts, float)
+        ax2.fill_between(alpha[order], 0.7 * pred[order], 1.3 * pred[order], color="0.92", label="±30 %")
+        ax2.plot(alpha[order], c[order], "o-", color=PALETTE[0], label="simulated ⟨c⟩ (bulk rods)")
+        ax2.plot(alpha[order], pred[order], "s--", mfc="none", color=PALETTE[1],
+                 label="Philipse φ(6α²+24α+16)/(3α+2)" + ("" if phi_bulk is None else " at bulk φ"))  # fmt: skip
+        ax2.set(xlabel="aspect ratio α", ylabel="⟨c⟩", ylim=(0, 1.4 * max(np.nanmax(c), np.nanmax(pred))))
+        ax2.legend(fontsize=7)
     save_figure(fig, path)
     return Path(path)
