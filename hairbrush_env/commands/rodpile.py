@@ -317,7 +317,7 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
     )
     g.add_argument("--friction", type=float, default=0.4)
     g.add_argument(
-        "--wall-friction", type=float, default=None, help="rod–wall/floor friction (default: --friction)"
+        "--wall-friction", type=float, default=None, help="rod–wall friction (default: --friction)"
     )
     g.add_argument("--batch", type=int, default=10, help="rods dropped together (default 10)")
     g.add_argument("--seed", type=int, default=0)

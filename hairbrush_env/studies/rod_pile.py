@@ -716,20 +716,18 @@ def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float,
     return np.array(out)
 
 
-def _jostle(pile: _Pile, rng, n_shakes: int, tilt_deg: float, hop: float | None = None) -> None:
+def _jostle(pile: _Pile, rng, n_shakes: int, tilt_deg: float) -> None:
     """Shake and tilt the container, simulated in the container's frame (§4.5.1 "jostled ... inverted").
 
     In the frame of a container that translates with acceleration a(t) and tilts slowly, the rods feel the effective
     gravity g − a(t) rotated by the tilt; the fictitious rotational forces are negligible for slow tilts. So instead
     of moving the walls (a teleported mocap container pushes rods through each other), we vary gravity: magnitude
-    g(1 + 1.2 sin ωt) — the pile is thrown up by about ``hop`` (default one rod diameter) each period — while its
-    direction tilts by up to ``tilt_deg`` about a random horizontal axis and back. Then everything settles under
-    normal gravity. The period scales with √(hop/g), so a larger hop is a slower, larger-amplitude shake.
+    g(1 + 1.2 sin ωt) — the pile is thrown up ~1 d each period — while its direction tilts by up to ``tilt_deg``
+    about a random horizontal axis and back. Then everything settles under normal gravity.
     """
     sp = pile.sp
     opt = pile.model.opt
-    hop = sp.diameter if hop is None else hop
-    period = 12.6 * math.sqrt(hop / GRAVITY)  # free-flight time of a ~hop-high jump at 0.2 g net lift
+    period = 12.6 * math.sqrt(sp.diameter / GRAVITY)  # free-flight time of a ~1 d hop at 0.2 g net lift
     omega = 2 * math.pi / period
     nsteps = int(5 * period / sp.dt)
     for _ in range(n_shakes):
@@ -786,8 +784,8 @@ def generate_packing(
     friction : float
         Coulomb friction coefficient (steel on steel ≈ 0.3–0.5).
     wall_friction : float, optional
-        Friction of rods on the container wall and floor (default: ``friction``). The experiments used an acrylic
-        container; frictional walls carry part of the pile's weight (Janssen effect).
+        Friction of rods on the container wall (default: ``friction``; the floor always has ``friction``). The
+        experiments used an acrylic container; frictional walls carry part of the pile's weight (Janssen effect).
     freeze_depth : float, optional
         Speed-up for tall piles, in rod lengths (e.g. 1.0): while rods are being added, rods lying entirely more
         than ``freeze_depth·L`` below the current pile top are made static (they carry the rods above but are not
