@@ -49,20 +49,13 @@ def test_rodpile_summary_reports_the_bulk_away_from_the_wall(tmp_path, capsys):
     """`rodpile summary --plot`: container-averaged and bulk (≥ L/2 from the wall) φα, on a random gas of rods
     placed uniformly inside a 3 L cylinder. Near the wall a rod fits only as a steep rod or a chord, so the
     container average must be lower than the bulk value."""
-    from hairbrush_env.studies.rod_pile import Packing, packing_fraction
+    from hairbrush_env.studies.rod_pile import load_packing, packing_fraction
 
-    rng = np.random.default_rng(0)
-    length, d, radius, height = 0.05, 0.05 / 20, 0.075, 0.1
-    ends = []
-    while len(ends) < 600:
-        u = rng.normal(size=3)
-        u /= np.linalg.norm(u)
-        c = np.array([*(rng.uniform(-radius, radius, 2)), rng.uniform(0, height)])
-        e = np.array([c - u * length / 2, c + u * length / 2])
-        if np.hypot(e[:, 0], e[:, 1]).max() <= radius and e[:, 2].min() >= 0:
-            ends.append(e)
-    pile = Packing.from_endpoints(np.array(ends), d, 2 * radius)
-    path = pile.save(tmp_path / "gas.npz")
+    length = 0.05
+    path = tmp_path / "gas.npz"
+    assert main(["rodpile", "gas", "--n-rods", "600", "--alpha", "20", "--container", "3", "--height", "2",
+                 "--out", str(path)]) == 0  # fmt: skip
+    pile = load_packing(path)
     assert main(["rodpile", "summary", str(path), "--out", str(tmp_path / "s.json"),
                  "--plot", str(tmp_path / "phi.png")]) == 0  # fmt: skip
     s = json.loads((tmp_path / "s.json").read_text())[0]

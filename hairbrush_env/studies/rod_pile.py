@@ -365,6 +365,33 @@ def phi_seen(packing: Packing, mask: np.ndarray, n_annuli: int = 6, *, slab=(0.2
     return float(per_annulus @ phi / per_annulus.sum())
 
 
+def random_rod_gas(
+    n_rods: int, length: float, diameter: float, *, container_diameter: float, height: float, seed: int = 0
+) -> Packing:
+    """Geometric reference: isotropic rods with centres uniform in the cylinder, kept only if they lie fully inside
+    (radius and z ≥ 0); rods may overlap. It has no mechanics, so its wall layer is purely geometric (a rod near the
+    wall fits only when steep or as a chord) — the reference for how much a container lowers the averaged φ_f
+    compared with the bulk (Freeman et al., Granular Matter 21, 84, 2019)."""
+    if not (isinstance(n_rods, int | np.integer) and n_rods >= 1):
+        raise ValueError(f"n_rods: must be a positive integer, got {n_rods!r}")
+    radius = container_diameter / 2
+    if not radius > length / 2:
+        raise ValueError(f"container_diameter: must exceed the rod length, got {container_diameter!r}")
+    if not height > 0:
+        raise ValueError(f"height: must be > 0, got {height!r}")
+    rng = np.random.default_rng(seed)
+    ends: list[np.ndarray] = []
+    while len(ends) < n_rods:
+        u = rng.normal(size=3)
+        u /= np.linalg.norm(u)
+        c = np.array([*rng.uniform(-radius, radius, 2), rng.uniform(0, height)])
+        e = np.array([c - u * length / 2, c + u * length / 2])
+        if np.hypot(e[:, 0], e[:, 1]).max() <= radius and e[:, 2].min() >= 0:
+            ends.append(e)
+    return Packing.from_endpoints(np.array(ends), diameter, container_diameter, {"generator": "random_rod_gas",
+                                                                                  "seed": int(seed)})  # fmt: skip
+
+
 def philipse_contact_number(phi: float, alpha: float, mean_abs_sin: float | None = None) -> float:
     """Random contact equation (Philipse 1996): ⟨c⟩ = φ (6α² + 24α + 16) / (3α + 2); → 2φα for α ≫ 1.
 

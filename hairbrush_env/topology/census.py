@@ -204,11 +204,16 @@ def layer_link_matrices(
     return mats, extent
 
 
-def link_census_from_matrices(mats: np.ndarray, threshold: float, extent: float) -> dict[int, float]:
-    """``{N: ρ_N}`` of the ``"link"`` criterion at ``threshold`` from :func:`layer_link_matrices` output."""
+def _check_mats(mats) -> np.ndarray:
     mats = np.asarray(mats, dtype=float)
     if mats.ndim != 3 or mats.shape[1] != mats.shape[2]:
         raise ValueError(f"mats: expected shape (layers, n, n), got {mats.shape}")
+    return mats
+
+
+def link_census_from_matrices(mats: np.ndarray, threshold: float, extent: float) -> dict[int, float]:
+    """``{N: ρ_N}`` of the ``"link"`` criterion at ``threshold`` from :func:`layer_link_matrices` output."""
+    mats = _check_mats(mats)
     if not threshold >= 0:
         raise ValueError(f"threshold: must be >= 0, got {threshold!r}")
     if not extent > 0:
@@ -229,9 +234,7 @@ def empirical_lk_threshold(mats: np.ndarray) -> float:
     cluster, and just below m at least one layer does. ``mats`` may hold several bundles' layers stacked along axis
     0 (one threshold for all, as the thesis chose one for all its curls).
     """
-    mats = np.asarray(mats, dtype=float)
-    if mats.ndim != 3 or mats.shape[1] != mats.shape[2]:
-        raise ValueError(f"mats: expected shape (layers, n, n), got {mats.shape}")
+    mats = _check_mats(mats)
     best = 0.0
     for m in mats:
         present = ~np.isnan(np.diag(m))
