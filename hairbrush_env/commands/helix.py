@@ -40,6 +40,12 @@ def _cmd_helix_run(args: argparse.Namespace) -> int:
         f"combable link left {100 * res.combed_lk_end_fraction:.1f} %); D = {res.D * 1e3:.1f} mm; "
         f"{res.wall_time:.1f} s"
     )
+    if res.strand_crossings or res.tine_crossings:
+        print(
+            f"WARNING: topology violated: {res.strand_crossings} strand-strand and {res.tine_crossings} strand-tine "
+            f"passages at d = {', '.join(f'{1e3 * d:.1f}' for d in res.crossing_d)} mm (contacts gave way); "
+            f"Lk without them {res.lk_end_faithful:.2f}"
+        )
     print("wrote " + ", ".join(str(p) for p in paths))
     return 0
 
@@ -80,19 +86,27 @@ def _cmd_helix_sweep(args: argparse.Namespace) -> int:
         rows.append(
             [vkey(r), p["seed"], r.f_max, r.x_at_f_max, r.jam_ratio, int(r.jammed), r.D, r.lk0, r.lk_end,
              r.lk_above, r.combed_lk_end_fraction, r.min_gap_tine / r.setup.radius,
-             r.min_gap_strands / r.setup.radius, s["wall_time"]]
+             r.min_gap_strands / r.setup.radius, r.strand_crossings, r.tine_crossings, r.lk_end_faithful,
+             s["wall_time"]]
         )  # fmt: skip
         curves += [[vkey(r), p["seed"], *row] for row in r.csv_rows()[1].tolist()]
     header = ["value", "seed", "f_max", "x_at_f_max", "jam_ratio", "jammed", "D_m", "Lk0", "Lk_end", "Lk_above",
-              "combed_lk_end_fraction", "min_gap_tine_over_r", "min_gap_strands_over_r", "wall_time_s"]  # fmt: skip
+              "combed_lk_end_fraction", "min_gap_tine_over_r", "min_gap_strands_over_r", "strand_crossings",
+              "tine_crossings", "Lk_end_faithful", "wall_time_s"]  # fmt: skip
     write_text(out / f"sweep_{name}.csv", _csv(header, rows))
     write_text(out / f"sweep_{name}_curves.csv", _csv(["value", "seed", *results[0].csv_rows()[0]], curves))
     plot_sweep(results, name, out / f"sweep_{name}.png")
-    print(f"{name:>10} {'f_max':>8} {'jammed':>7} {'Lk0':>6} {'Lk_end':>7} {'combed left':>11}")
+    print(
+        f"{name:>10} {'f_max':>8} {'jammed':>7} {'Lk0':>6} {'Lk_end':>7} {'combed left':>11} {'crossings':>9}"
+    )
     for row in rows:
         print(
             f"{row[0]:>10.3g} {row[2]:>8.3f} {row[5]:>7d} {row[7]:>6.2f} {row[8]:>7.2f} {100 * row[10]:>10.1f}%"
+            f" {row[13]:>4d}/{row[14]:<4d}"
         )
+    print(
+        "crossings = strand-strand / strand-tine passages (topology violations; -1 = cached before the check)"
+    )
     if name == "q":
         qs = np.array([vkey(r) for r in results])
         uq = np.unique(qs)
