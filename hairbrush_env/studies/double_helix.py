@@ -309,6 +309,8 @@ class CombingResult:
         a faithful run would have left; claim 3 is judged on it (:attr:`lk_end_faithful`).
     wall_time : float
         Seconds of wall clock.
+    check_time : float
+        Seconds of it spent in the topology check (the benchmark prints the share).
     """
 
     setup: CombingSetup
@@ -336,6 +338,7 @@ class CombingResult:
     tine_crossings: int = 0
     crossing_d: tuple[float, ...] = ()
     crossing_lk: float = 0.0
+    check_time: float = 0.0
     frames: np.ndarray = field(repr=False, default_factory=lambda: np.zeros((0, 2, 0, 3)))
 
     @property
@@ -664,9 +667,12 @@ def run_combing(
     crossings = np.zeros(3, dtype=int)
     crossing_d: list[float] = []
     crossing_lk = [0.0]  # signed Lk(a, b) carried by the strand–strand passages
+    check_time = [0.0]
 
     def check(z_tine: float, d: float, prev: np.ndarray) -> np.ndarray:
+        t0 = time.perf_counter()
         new = gauss_pairs(z_tine)
+        check_time[0] += time.perf_counter() - t0
         jumps = _passages(prev, new)
         if jumps.any():
             crossings[:] += jumps
@@ -787,6 +793,7 @@ def run_combing(
         tine_crossings=int(crossings[1] + crossings[2]),
         crossing_d=tuple(crossing_d),
         crossing_lk=crossing_lk[0],
+        check_time=check_time[0],
         frames=frames_arr if keep_frames else np.zeros((0, 2, 0, 3)),
     )
 
