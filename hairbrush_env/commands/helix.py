@@ -37,7 +37,8 @@ def _cmd_helix_run(args: argparse.Namespace) -> int:
     print(
         f"f_max = {res.f_max:.3f} at x = {res.x_at_f_max:.2f}; jammed = {res.jammed} (peak/plateau "
         f"{res.jam_ratio:.2f}); Lk {res.lk0:.2f} -> {res.lk_end:.2f} (trapped above tine {res.lk_above:.2f}; "
-        f"combable link left {100 * res.combed_lk_end_fraction:.1f} %); D = {res.D * 1e3:.1f} mm; "
+        f"combable link left {100 * res.combed_lk_end_fraction:.1f} %); braid bend below the tine "
+        f"{res.bend_max:.1f} deg at x = {res.x_at_bend_max:.2f} (kinked = {res.kinked}); D = {res.D * 1e3:.1f} mm; "
         f"{res.wall_time:.1f} s"
     )
     if res.strand_crossings or res.tine_crossings:
@@ -87,25 +88,29 @@ def _cmd_helix_sweep(args: argparse.Namespace) -> int:
             [vkey(r), p["seed"], r.f_max, r.x_at_f_max, r.jam_ratio, int(r.jammed), r.D, r.lk0, r.lk_end,
              r.lk_above, r.combed_lk_end_fraction, r.min_gap_tine / r.setup.radius,
              r.min_gap_strands / r.setup.radius, r.strand_crossings, r.tine_crossings, r.lk_end_faithful,
-             s["wall_time"]]
+             r.bend_max, r.x_at_bend_max, int(r.kinked), s["wall_time"]]
         )  # fmt: skip
         curves += [[vkey(r), p["seed"], *row] for row in r.csv_rows()[1].tolist()]
     header = ["value", "seed", "f_max", "x_at_f_max", "jam_ratio", "jammed", "D_m", "Lk0", "Lk_end", "Lk_above",
               "combed_lk_end_fraction", "min_gap_tine_over_r", "min_gap_strands_over_r", "strand_crossings",
-              "tine_crossings", "Lk_end_faithful", "wall_time_s"]  # fmt: skip
+              "tine_crossings", "Lk_end_faithful", "bend_max_deg", "x_at_bend_max", "kinked",
+              "wall_time_s"]  # fmt: skip
     write_text(out / f"sweep_{name}.csv", _csv(header, rows))
     write_text(out / f"sweep_{name}_curves.csv", _csv(["value", "seed", *results[0].csv_rows()[0]], curves))
     plot_sweep(results, name, out / f"sweep_{name}.png")
     print(
         f"{name:>10} {'f_max':>8} {'jammed':>7} {'Lk0':>6} {'Lk_end':>7} {'combed left':>11} {'crossings':>9}"
+        f" {'bend':>6}"
     )
     for row in rows:
         print(
             f"{row[0]:>10.3g} {row[2]:>8.3f} {row[5]:>7d} {row[7]:>6.2f} {row[8]:>7.2f} {100 * row[10]:>10.1f}%"
-            f" {row[13]:>4d}/{row[14]:<4d}"
+            f" {row[13]:>4d}/{row[14]:<4d} {row[16]:>6.1f}"
         )
     print(
-        "crossings = strand-strand / strand-tine passages (topology violations; -1 = cached before the check)"
+        "crossings = strand-strand / strand-tine passages (topology violations; -1 = cached before the check)\n"
+        "bend = largest bend of the braid below the tine [deg] (kink, thesis Fig. 2.2a; nan = never 3 pitches below "
+        "the tine, or cached before the measure)"
     )
     if name == "q":
         qs = np.array([vkey(r) for r in results])

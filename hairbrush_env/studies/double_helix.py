@@ -38,6 +38,14 @@ Model (MuJoCo 4.0 discrete elastic rods from :mod:`hairbrush_env.rods`, topology
 * Jamming (thesis: "a sharp increase in the force extension curve" that falls "once the tine breaks through"):
   the largest smoothed force before the exit is at least ``ratio`` = 1.25 × the median force between that peak and
   the exit (:func:`jam_metrics`).
+* Kinking (thesis Fig. 2.2a: "it forms a kink about which the helix whirls"; Fig. 2.4: "below a certain link
+  threshold, combing finishes without kink formation"): :func:`braid_bend` measures, per sample, how far the braid
+  below the tine bends away from the vertical: the largest angle between the downward vertical and the centerline
+  (a + b)/2, smoothed over one pitch, from the tine to one pitch above the free end (where the free ends untwist and
+  splay), while at least ``_BEND_MIN_PITCHES`` = 3 pitches hang below the tine (later, the release folds the short
+  rest over the tine). ``bend_max`` is its largest value in the stroke before any strand passage. A run counts as
+  kinked when it reaches ``KINK_ANGLE`` = 30°, a choice; the angle itself is reported so that other thresholds
+  can be applied.
 * Topology check: every 5 steps the open Gauss integrals Lk(a, b) and Lk(strand, tine axis) are recomputed. A strand
   pinched through the other strand or through the tine (a contact that gave way) makes one of them jump by ±1; such
   passages are counted (``strand_crossings``, ``tine_crossings``) and their link is taken out of the claim-3
@@ -58,8 +66,10 @@ import numpy as np
 
 __all__ = [
     "COST_Q0",
+    "KINK_ANGLE",
     "CombingResult",
     "CombingSetup",
+    "braid_bend",
     "combing_cost",
     "jam_metrics",
     "optimal_q",
@@ -311,6 +321,9 @@ class CombingResult:
         Seconds of wall clock.
     check_time : float
         Seconds of it spent in the topology check (the benchmark prints the share).
+    bend : np.ndarray
+        Bend of the braid below the tine [deg] per sample (:func:`braid_bend`); NaN where fewer than 3 pitches hang
+        below the tine, all NaN for results cached before the measure existed.
     """
 
     setup: CombingSetup
@@ -339,6 +352,7 @@ class CombingResult:
     crossing_d: tuple[float, ...] = ()
     crossing_lk: float = 0.0
     check_time: float = 0.0
+    bend: np.ndarray = field(default_factory=lambda: np.zeros(0))
     frames: np.ndarray = field(repr=False, default_factory=lambda: np.zeros((0, 2, 0, 3)))
 
     @property
@@ -352,6 +366,35 @@ class CombingResult:
         taken without strand–strand passages (:attr:`lk_end_faithful`)."""
         den = self.lk0 - self.lk_above
         return (self.lk_end_faithful - self.lk_above) / den if den else float("nan")
+
+    def bend_per_sample(self) -> np.ndarray:
+        """:attr:`bend` aligned with :attr:`x` (all NaN when it was not measured)."""
+        bend = np.asarray(self.bend, dtype=float)
+        return bend if bend.shape == self.x.shape else np.full(self.x.shape, np.nan)
+
+    def _bend_in_stroke(self) -> np.ndarray:
+        bend = self.bend_per_sample()
+        valid = self.x <= 1.0
+        if self.crossing_d:  # after a strand passed through the other or the tine the geometry is unphysical
+            valid &= self.d < min(self.crossing_d)
+        return np.where(valid, bend, np.nan)
+
+    @property
+    def bend_max(self) -> float:
+        """Largest bend of the braid below the tine during the stroke [deg], before any strand passage; NaN if
+        never measured."""
+        bend = self._bend_in_stroke()
+        return float(np.nanmax(bend)) if np.isfinite(bend).any() else float("nan")
+
+    @property
+    def x_at_bend_max(self) -> float:
+        bend = self._bend_in_stroke()
+        return float(self.x[int(np.nanargmax(bend))]) if np.isfinite(bend).any() else float("nan")
+
+    @property
+    def kinked(self) -> bool:
+        """The braid below the tine bent by at least :data:`KINK_ANGLE` (the thesis's kink, Fig. 2.2a)."""
+        return bool(self.bend_max >= KINK_ANGLE)
 
     def summary(self) -> dict[str, Any]:
         """Scalar results and the setup (JSON-friendly)."""
@@ -375,6 +418,9 @@ class CombingResult:
             "crossing_d": list(self.crossing_d),
             "crossing_lk": self.crossing_lk,
             "lk_end_faithful": self.lk_end_faithful,
+            "bend_max": _json_float(self.bend_max),
+            "x_at_bend_max": _json_float(self.x_at_bend_max),
+            "kinked": self.kinked,
             "wall_time": self.wall_time,
         }
 
@@ -383,6 +429,7 @@ class CombingResult:
         out = self.summary()
         for name in ("d", "x", "F", "f", "lk", "current", "love_f"):
             out[name] = np.asarray(getattr(self, name)).tolist()
+        out["bend"] = [_json_float(v) for v in np.asarray(self.bend, dtype=float)]
         out["snapshots"] = {
             f"{x:.3f}": {"s": s.tolist(), "dlam": v.tolist()} for x, (s, v) in self.snapshots.items()
         }
@@ -413,14 +460,22 @@ class CombingResult:
         scal["tine_crossings"] = int(data.get("tine_crossings", -1))
         scal["crossing_d"] = tuple(float(v) for v in data.get("crossing_d", ()))
         scal["crossing_lk"] = float(data.get("crossing_lk", 0.0))
+        # results cached before the bend measure existed: NaN = not measured
+        bend = data.get("bend")
+        scal["bend"] = (
+            np.full(arr["x"].shape, np.nan)
+            if bend is None
+            else np.array([np.nan if v is None else v for v in bend], dtype=float)
+        )
         # jamming is post-processing: recompute it so cached runs follow the current criterion
         scal["jammed"], scal["jam_ratio"] = jam_metrics(arr["x"], arr["f"])
         return cls(setup=setup, snapshots=snaps, **arr, **scal)
 
     def csv_rows(self) -> tuple[list[str], np.ndarray]:
-        """Header and ``(n, 7)`` table: d, x, F, f, Lk, dLk/dx, Love f."""
-        header = ["d_m", "x", "F_N", "f", "Lk", "dLk_dx", "love_f"]
-        return header, np.column_stack([self.d, self.x, self.F, self.f, self.lk, self.current, self.love_f])
+        """Header and ``(n, 8)`` table: d, x, F, f, Lk, dLk/dx, Love f, braid bend [deg] (NaN = not measured)."""
+        header = ["d_m", "x", "F_N", "f", "Lk", "dLk_dx", "love_f", "bend_deg"]
+        cols = [self.d, self.x, self.F, self.f, self.lk, self.current, self.love_f, self.bend_per_sample()]
+        return header, np.column_stack(cols)
 
 
 # ----------------------------------------------------------------------------------------------- model
@@ -523,6 +578,17 @@ def _tine_force(model, data, tine_geom: int, buf: np.ndarray) -> tuple[float, fl
 
 
 # ---------------------------------------------------------------------------------------------- analysis
+# [deg] bend of the braid below the tine that counts as a kink (a choice; the angle itself is reported)
+KINK_ANGLE = 30.0
+_BEND_MIN_PITCHES = 3
+
+
+def _bend_axis_top(bend: np.ndarray) -> float:
+    """Upper y limit of bend plots: 95° unless a fold went further (a whirling kink can exceed 90°)."""
+    finite = bend[np.isfinite(bend)]
+    return max(95.0, 1.05 * float(finite.max())) if finite.size else 95.0
+
+
 def _smooth(y: np.ndarray, window: int) -> np.ndarray:
     if window <= 1 or y.size < window:
         return y.copy()
@@ -561,6 +627,59 @@ def jam_metrics(x: np.ndarray, f: np.ndarray, *, ratio: float = 1.25, window: in
     level = float(np.median(fs[(x >= x[k]) & (x <= x_exit)]))
     jam_ratio = float(fs[k]) / level if level > 0 else float("inf")
     return bool(jam_ratio >= ratio), jam_ratio
+
+
+def _json_float(v: float) -> float | None:
+    """NaN → None, so that the JSON files stay strict JSON."""
+    return None if not math.isfinite(v) else float(v)
+
+
+def braid_bend(frames, z_tine, points_per_pitch: int, *, min_pitches: int = _BEND_MIN_PITCHES) -> np.ndarray:
+    """Bend of the braid below the tine [deg] for each frame: the kink of thesis Fig. 2.2a.
+
+    The braid centerline is (a + b)/2 (the pairing of :func:`~hairbrush_env.topology.link_density`). Its part from the
+    first vertex below the tine to one pitch above the free end is smoothed by a moving average over one pitch (the
+    helical wiggle of the midpoint) and the largest angle between its tangent and the downward vertical is returned.
+    A straight hanging braid gives ≈ 0°, a braid folded sideways 90°. The last pitch is left out because the free
+    ends untwist and splay there, which moves their midpoint sideways without any bend of the braid.
+
+    Parameters
+    ----------
+    frames : (n_frames, 2, n, 3) array_like
+        The two strands' vertices (clamp first) per frame.
+    z_tine : float or (n_frames,) array_like
+        Height of the tine axis per frame [m].
+    points_per_pitch : int
+        Vertices per helix pitch along one strand (the smoothing window and the excluded free-end piece).
+    min_pitches : int
+        Frames with fewer pitches of braid below the tine give NaN (during the release the short rest folds over
+        the tine, which is not a kink of the braid).
+    """
+    fr = np.asarray(frames, dtype=float)
+    if fr.ndim != 4 or fr.shape[1] != 2 or fr.shape[3] != 3:
+        raise ValueError(f"frames: expected shape (n_frames, 2, n, 3), got {fr.shape}")
+    for name, v in (("points_per_pitch", points_per_pitch), ("min_pitches", min_pitches)):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 2:
+            raise ValueError(f"{name}: expected an integer >= 2, got {v!r}")
+    z = np.broadcast_to(np.asarray(z_tine, dtype=float), (fr.shape[0],))
+    from scipy.ndimage import uniform_filter1d
+
+    w = int(points_per_pitch)
+    half = w // 2
+    out = np.full(fr.shape[0], np.nan)
+    for k in range(fr.shape[0]):
+        c = 0.5 * (fr[k, 0] + fr[k, 1])
+        below = np.flatnonzero(c[:, 2] < z[k])
+        if below.size == 0 or c.shape[0] - below[0] < min_pitches * w:
+            continue
+        piece = c[below[0] : c.shape[0] - w]
+        smooth = uniform_filter1d(piece, size=w, axis=0, mode="nearest")[half : piece.shape[0] - half]
+        t = np.diff(smooth, axis=0)
+        norm = np.linalg.norm(t, axis=1)
+        t = t[norm > 0] / norm[norm > 0, None]
+        if t.size:
+            out[k] = float(np.degrees(np.arccos(np.clip(-t[:, 2], -1.0, 1.0))).max())
+    return out
 
 
 def combing_cost(f_max, q, gamma, *, q0: float = COST_Q0):
@@ -764,6 +883,8 @@ def run_combing(
     above = [frames_arr[0, i][frames_arr[0, i][:, 2] >= z0] for i in (0, 1)]
     lk_above = float(linking_number(above[0], above[1], closed=False)) if min(map(len, above)) >= 2 else 0.0
 
+    bend = braid_bend(frames_arr, z0 - d_arr, setup.edges_per_pitch)
+
     in_stroke = x <= 1.0
     kmax = int(np.argmax(np.where(in_stroke, f, -np.inf)))
     jammed, jam_ratio = jam_metrics(x, f)
@@ -794,6 +915,7 @@ def run_combing(
         crossing_d=tuple(crossing_d),
         crossing_lk=crossing_lk[0],
         check_time=check_time[0],
+        bend=bend,
         frames=frames_arr if keep_frames else np.zeros((0, 2, 0, 3)),
     )
 
@@ -882,7 +1004,17 @@ def plot_run(result: CombingResult, path) -> None:
     top = 1.3 * max(result.f_max, 1e-9)
     ax.set(xlabel="x = d/D", ylabel="f = F l0²/B", ylim=(min(0.0, float(result.f.min())), top), xlim=(0, 1))
     ax.set_title(f"P/r={st.P_over_r:g}, R/r={st.R_over_r:g}, t/r={st.t_over_r:g}, q={st.q_effective:.1f}")
-    ax.legend(fontsize=8)
+    bend = result.bend_per_sample()[keep]
+    if np.isfinite(bend).any():
+        axb = ax.twinx()
+        axb.plot(result.x[keep], bend, color=PALETTE[2], lw=0.8, label="braid bend below the tine")
+        axb.axhline(KINK_ANGLE, color=PALETTE[2], lw=0.6, ls=":")
+        axb.set(ylabel="bend [deg]", ylim=(0, _bend_axis_top(bend)))
+        h1, l1 = ax.get_legend_handles_labels()
+        h2, l2 = axb.get_legend_handles_labels()
+        ax.legend(h1 + h2, l1 + l2, fontsize=8)
+    else:
+        ax.legend(fontsize=8)
     ax = axes[0, 1]
     for i, (x, (s, dl)) in enumerate(sorted(result.snapshots.items())):
         ax.plot(s / s[-1], dl, color=PALETTE[i % len(PALETTE)], lw=1, label=f"x = {x:.1f}")
@@ -906,7 +1038,7 @@ def plot_sweep(results: Sequence[CombingResult], vary: str, path) -> None:
     2.4a–b, 2.6)."""
     from ..viz import PALETTE, new_figure, save_figure
 
-    fig, axes = new_figure(2, 1, width=4.8, height=3.6)
+    fig, axes = new_figure(3, 1, width=4.8, height=3.6)
     ax = axes[0, 0]
     values = sorted({_vary_value(r, vary) for r in results})
     for r in results:
@@ -930,6 +1062,13 @@ def plot_sweep(results: Sequence[CombingResult], vary: str, path) -> None:
     if passed.any():  # a contact gave way in these runs: their link accounting excludes the passage
         ax.plot(v[passed], fm[passed], "x", color="k", ms=9, label="strand passage")
     ax.set(xlabel=vary, ylabel="f_max", title=f"maximal force vs {vary}")
+    ax.legend(fontsize=8)
+    ax = axes[0, 2]
+    bend = np.array([r.bend_max for r in results])
+    ax.plot(v, bend, "o", color=PALETTE[2])
+    ax.axhline(KINK_ANGLE, color="0.5", lw=0.8, ls="--", label=f"kink threshold {KINK_ANGLE:g}°")
+    ax.set(xlabel=vary, ylabel="largest bend below the tine [deg]", title="kinking (Fig. 2.2a)",
+           ylim=(0, _bend_axis_top(bend)))  # fmt: skip
     ax.legend(fontsize=8)
     save_figure(fig, path)
 
