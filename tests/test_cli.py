@@ -64,3 +64,51 @@ def test_rodpile_summary_reports_the_bulk_away_from_the_wall(tmp_path, capsys):
     assert np.isfinite(s["contacts_bulk_over_philipse_inner"])
     assert "≥ L/2 from the wall" in capsys.readouterr().out
     assert (tmp_path / "phi.png").stat().st_size > 10_000
+
+
+def test_helix_run_and_sweep_commands(tmp_path, capsys):
+    """``hairbrush helix run|sweep`` on a reduced helix: the printed summary (with break-throughs and kink jams),
+    the files, the sweep's CSV columns, and clear errors for bad --set / --vary."""
+    import csv
+
+    reduced = [
+        "--set",
+        "height=0.06",
+        "--set",
+        "edges_per_pitch=8",
+        "--set",
+        "samples=40",
+        "--set",
+        "settle_time=0.2",
+    ]
+    assert main(["helix", "run", *reduced, "--out", str(tmp_path / "run")]) == 0
+    out = capsys.readouterr().out
+    assert "f_max = " in out and "kink jams" in out and "break-through at x = " in out  # at least the exit
+    for name in ("combing.csv", "combing.json", "combing.png"):
+        assert (tmp_path / "run" / name).stat().st_size > 0
+    summary = json.loads((tmp_path / "run" / "combing.json").read_text())
+    assert summary["kink_jams"] == 0 and summary["kink_free_drops"] >= 0
+
+    sweep = [
+        "helix",
+        "sweep",
+        "--vary",
+        "P_over_r=18,48",
+        *reduced,
+        "--workers",
+        "1",
+        "--out",
+        str(tmp_path / "sw"),
+    ]
+    assert main(sweep) == 0
+    rows = list(csv.DictReader((tmp_path / "sw" / "sweep_P_over_r.csv").open()))
+    assert [float(r["value"]) for r in rows] == [18.0, 48.0]
+    assert float(rows[0]["f_max"]) > float(rows[1]["f_max"])  # claim 1 through the command
+    assert {"kink_jams", "kink_free_drops", "bend_max_deg", "jammed"} <= set(rows[0])
+    assert (tmp_path / "sw" / "sweep_P_over_r.png").stat().st_size > 10_000
+    assert "kink jams" in capsys.readouterr().out
+
+    with pytest.raises(SystemExit, match="P_over_r"):
+        main(["helix", "run", "--set", "P_over_r=-1", "--out", str(tmp_path / "bad")])
+    with pytest.raises(SystemExit, match="--vary expects"):
+        main(["helix", "sweep", "--vary", "P_over_r", "--out", str(tmp_path / "bad")])

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 
@@ -38,9 +39,16 @@ def _cmd_helix_run(args: argparse.Namespace) -> int:
         f"f_max = {res.f_max:.3f} at x = {res.x_at_f_max:.2f}; jammed = {res.jammed} (peak/plateau "
         f"{res.jam_ratio:.2f}); Lk {res.lk0:.2f} -> {res.lk_end:.2f} (trapped above tine {res.lk_above:.2f}; "
         f"combable link left {100 * res.combed_lk_end_fraction:.1f} %); braid bend below the tine "
-        f"{res.bend_max:.1f} deg at x = {res.x_at_bend_max:.2f} (kinked = {res.kinked}); D = {res.D * 1e3:.1f} mm; "
+        f"{res.bend_max:.1f} deg at x = {res.x_at_bend_max:.2f} (kinked = {res.kinked}); break-throughs: "
+        f"{res.kink_jams} at a kink (kink jams), {res.kink_free_drops} kink-free; D = {res.D * 1e3:.1f} mm; "
         f"{res.wall_time:.1f} s"
     )
+    for b in res.breakthroughs():
+        kind = "no bend measured" if math.isnan(b.bend) else ("KINK JAM" if b.kinked else "kink-free drop")
+        print(
+            f"  break-through at x = {b.x_peak:.3f}: f {b.f_peak:.2f} -> {b.f_drop:.2f} by x = {b.x_drop:.3f}, "
+            f"braid bend {b.bend:.1f} deg ({kind})"
+        )
     if res.strand_crossings or res.tine_crossings:
         print(
             f"WARNING: topology violated: {res.strand_crossings} strand-strand and {res.tine_crossings} strand-tine "
@@ -88,29 +96,31 @@ def _cmd_helix_sweep(args: argparse.Namespace) -> int:
             [vkey(r), p["seed"], r.f_max, r.x_at_f_max, r.jam_ratio, int(r.jammed), r.D, r.lk0, r.lk_end,
              r.lk_above, r.combed_lk_end_fraction, r.min_gap_tine / r.setup.radius,
              r.min_gap_strands / r.setup.radius, r.strand_crossings, r.tine_crossings, r.lk_end_faithful,
-             r.bend_max, r.x_at_bend_max, int(r.kinked), s["wall_time"]]
+             r.bend_max, r.x_at_bend_max, int(r.kinked), r.kink_jams, r.kink_free_drops, s["wall_time"]]
         )  # fmt: skip
         curves += [[vkey(r), p["seed"], *row] for row in r.csv_rows()[1].tolist()]
     header = ["value", "seed", "f_max", "x_at_f_max", "jam_ratio", "jammed", "D_m", "Lk0", "Lk_end", "Lk_above",
               "combed_lk_end_fraction", "min_gap_tine_over_r", "min_gap_strands_over_r", "strand_crossings",
               "tine_crossings", "Lk_end_faithful", "bend_max_deg", "x_at_bend_max", "kinked",
-              "wall_time_s"]  # fmt: skip
+              "kink_jams", "kink_free_drops", "wall_time_s"]  # fmt: skip
     write_text(out / f"sweep_{name}.csv", _csv(header, rows))
     write_text(out / f"sweep_{name}_curves.csv", _csv(["value", "seed", *results[0].csv_rows()[0]], curves))
     plot_sweep(results, name, out / f"sweep_{name}.png")
     print(
         f"{name:>10} {'f_max':>8} {'jammed':>7} {'Lk0':>6} {'Lk_end':>7} {'combed left':>11} {'crossings':>9}"
-        f" {'bend':>6}"
+        f" {'bend':>6} {'kink jams':>9} {'kink-free drops':>15}"
     )
     for row in rows:
         print(
             f"{row[0]:>10.3g} {row[2]:>8.3f} {row[5]:>7d} {row[7]:>6.2f} {row[8]:>7.2f} {100 * row[10]:>10.1f}%"
-            f" {row[13]:>4d}/{row[14]:<4d} {row[16]:>6.1f}"
+            f" {row[13]:>4d}/{row[14]:<4d} {row[16]:>6.1f} {row[19]:>9d} {row[20]:>15d}"
         )
     print(
         "crossings = strand-strand / strand-tine passages (topology violations; -1 = cached before the check)\n"
         "bend = largest bend of the braid below the tine [deg] (kink, thesis Fig. 2.2a; nan = never 3 pitches below "
-        "the tine, or cached before the measure)"
+        "the tine, or cached before the measure)\n"
+        "kink jams = break-throughs (force drop >= 20 %) at a bend >= 30 deg, the jam cycle of thesis §2.4; "
+        "kink-free drops = break-throughs with the braid straighter than that"
     )
     if name == "q":
         qs = np.array([vkey(r) for r in results])

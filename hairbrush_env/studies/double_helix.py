@@ -46,6 +46,10 @@ Model (MuJoCo 4.0 discrete elastic rods from :mod:`hairbrush_env.rods`, topology
   rest over the tine). ``bend_max`` is its largest value in the stroke before any strand passage. A run counts as
   kinked when it reaches ``KINK_ANGLE`` = 30°, a choice; the angle itself is reported so that other thresholds
   can be applied.
+* Kink jams (thesis §2.4: a kink "accompanied by a peak in applied force", then "the tine breaks through and the
+  force decreases, before the same cycle repeats again"): :func:`breakthroughs` finds each drop of the smoothed
+  force by the jam ratio and pairs it with the braid bend during the fall; ``kink_jams`` counts those at a bend
+  ≥ ``KINK_ANGLE`` and ``kink_free_drops`` those with a straighter braid.
 * Topology check: every 5 steps the open Gauss integrals Lk(a, b) and Lk(strand, tine axis) are recomputed. A strand
   pinched through the other strand or through the tine (a contact that gave way) makes one of them jump by ±1; such
   passages are counted (``strand_crossings``, ``tine_crossings``) and their link is taken out of the claim-3
@@ -60,16 +64,18 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass, field, fields, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
 __all__ = [
     "COST_Q0",
     "KINK_ANGLE",
+    "Breakthrough",
     "CombingResult",
     "CombingSetup",
     "braid_bend",
+    "breakthroughs",
     "combing_cost",
     "jam_metrics",
     "optimal_q",
@@ -396,6 +402,26 @@ class CombingResult:
         """The braid below the tine bent by at least :data:`KINK_ANGLE` (the thesis's kink, Fig. 2.2a)."""
         return bool(self.bend_max >= KINK_ANGLE)
 
+    def breakthroughs(self) -> list[Breakthrough]:
+        """The tine's break-throughs (:func:`breakthroughs`), each with the braid bend of the stroke (the bend is NaN
+        after a strand passage and while fewer than 3 pitches hang below the tine)."""
+        return breakthroughs(self.x, self.f, self._bend_in_stroke())
+
+    @property
+    def kink_jams(self) -> int:
+        """Break-throughs at a kinked braid: the jam cycle of thesis §2.4 (force peak at a kink, then the drop)."""
+        return sum(b.kinked for b in self.breakthroughs())
+
+    @property
+    def kink_free_drops(self) -> int:
+        """Break-throughs with the braid below the tine measured and bent less than :data:`KINK_ANGLE`."""
+        return sum(math.isfinite(b.bend) and not b.kinked for b in self.breakthroughs())
+
+    @property
+    def jammed_by_kink(self) -> bool:
+        """Jammed by the thesis's mechanism: at least one kink jam (§2.4; the force-only flag is :attr:`jammed`)."""
+        return self.kink_jams > 0
+
     def summary(self) -> dict[str, Any]:
         """Scalar results and the setup (JSON-friendly)."""
         return {
@@ -421,6 +447,8 @@ class CombingResult:
             "bend_max": _json_float(self.bend_max),
             "x_at_bend_max": _json_float(self.x_at_bend_max),
             "kinked": self.kinked,
+            "kink_jams": self.kink_jams,
+            "kink_free_drops": self.kink_free_drops,
             "wall_time": self.wall_time,
         }
 
@@ -627,6 +655,76 @@ def jam_metrics(x: np.ndarray, f: np.ndarray, *, ratio: float = 1.25, window: in
     level = float(np.median(fs[(x >= x[k]) & (x <= x_exit)]))
     jam_ratio = float(fs[k]) / level if level > 0 else float("inf")
     return bool(jam_ratio >= ratio), jam_ratio
+
+
+class Breakthrough(NamedTuple):
+    """One drop of the smoothed force by at least the jam ratio: the tine breaking through (thesis §2.4)."""
+
+    x_peak: float
+    x_drop: float
+    f_peak: float
+    f_drop: float
+    bend: float
+    """Largest braid bend below the tine during the fall [deg]; NaN if it was not measured there."""
+
+    @property
+    def kinked(self) -> bool:
+        return bool(self.bend >= KINK_ANGLE)
+
+
+def breakthroughs(
+    x: np.ndarray, f: np.ndarray, bend: np.ndarray, *, ratio: float = 1.25, window: int = 9
+) -> list[Breakthrough]:
+    """Every break-through of the tine: the smoothed force falls from a local peak to below peak / ``ratio``.
+
+    Thesis §2.4 describes the jam cycle: link density builds up ahead of the tine until "the relative shear often
+    leads to the kinked configuration ... accompanied by a peak in applied force. ... eventually the tine breaks
+    through and the force decreases, before the same cycle repeats again"; for loose helices "λ(s) never crosses the
+    threshold needed for kinking, and the force required to comb never peaks". So each drop is returned with the
+    largest bend of the braid below the tine (:func:`braid_bend`) during the fall (from the last sample within half
+    the drop of the peak to the end of the drop), widened by half the smoothing window; a *kink jam* is a
+    break-through with that bend ≥ :data:`KINK_ANGLE`. Peaks below a quarter of the largest force are ignored (the
+    tine brushing released free ends). ``ratio`` and ``window`` are those of :func:`jam_metrics`.
+
+    Parameters
+    ----------
+    x, f : np.ndarray
+        Scaled tine position and force.
+    bend : np.ndarray
+        Braid bend [deg] per sample, NaN where it is not measured (it then counts as no kink).
+    """
+    x = np.asarray(x, dtype=float)
+    fs = _smooth(np.asarray(f, dtype=float), window)
+    bend = np.asarray(bend, dtype=float)
+    if not (x.shape == fs.shape == bend.shape) or x.ndim != 1:
+        raise ValueError(f"x, f and bend must be 1-D of one length, got {x.shape}, {fs.shape}, {bend.shape}")
+    if not ratio > 1.0:
+        raise ValueError(f"ratio must be > 1, got {ratio!r}")
+    n = fs.size
+    if n == 0 or fs.max() <= 0:
+        return []
+    floor = 0.25 * float(fs.max())
+    half = window // 2
+    out: list[Breakthrough] = []
+    i = 0
+    while i < n - 1:
+        peak, j = i, i
+        while j < n and fs[j] * ratio >= fs[peak]:  # walk on until the force has fallen below peak / ratio
+            if fs[j] >= fs[peak]:  # the last of equal maxima: the drop starts there
+                peak = j
+            j += 1
+        if j >= n:
+            break
+        if fs[peak] > floor:
+            # the fall itself: from the last sample still within half the drop of the peak, ± half a window
+            start = peak + int(np.flatnonzero(fs[peak:j] >= 0.5 * (1.0 + 1.0 / ratio) * fs[peak])[-1])
+            part = bend[max(0, start - half) : min(n, j + half + 1)]
+            b = float(np.nanmax(part)) if np.isfinite(part).any() else float("nan")
+            out.append(Breakthrough(float(x[peak]), float(x[j]), float(fs[peak]), float(fs[j]), b))
+        while j < n - 1 and fs[j + 1] < fs[j]:  # the next cycle starts at the bottom of this drop
+            j += 1
+        i = max(j, i + 1)
+    return out
 
 
 def _json_float(v: float) -> float | None:
@@ -1004,6 +1102,12 @@ def plot_run(result: CombingResult, path) -> None:
     top = 1.3 * max(result.f_max, 1e-9)
     ax.set(xlabel="x = d/D", ylabel="f = F l0²/B", ylim=(min(0.0, float(result.f.min())), top), xlim=(0, 1))
     ax.set_title(f"P/r={st.P_over_r:g}, R/r={st.R_over_r:g}, t/r={st.t_over_r:g}, q={st.q_effective:.1f}")
+    drops = [b for b in result.breakthroughs() if math.isfinite(b.bend) and b.x_peak <= 1.0]
+    for kinked, style in ((True, {"color": "k"}), (False, {"facecolor": "none", "edgecolor": "k"})):
+        pts = [(b.x_peak, b.f_peak) for b in drops if b.kinked == kinked]
+        if pts:
+            label = "break-through at a kink (kink jam)" if kinked else "break-through, braid straight"
+            ax.scatter(*zip(*pts, strict=True), s=22, zorder=3, label=label, **style)
     bend = result.bend_per_sample()[keep]
     if np.isfinite(bend).any():
         axb = ax.twinx()
@@ -1056,8 +1160,11 @@ def plot_sweep(results: Sequence[CombingResult], vary: str, path) -> None:
     v = np.array([_vary_value(r, vary) for r in results])
     fm = np.array([r.f_max for r in results])
     jam = np.array([r.jammed for r in results])
-    ax.plot(v[~jam], fm[~jam], "o", color=PALETTE[0], label="no jam")
-    ax.plot(v[jam], fm[jam], "s", color=PALETTE[1], label="jammed")
+    ax.plot(v[~jam], fm[~jam], "o", color=PALETTE[0], label="no jam (force flag)")
+    ax.plot(v[jam], fm[jam], "s", color=PALETTE[1], label="jammed (force flag)")
+    kj = np.array([r.jammed_by_kink for r in results])
+    if kj.any():  # the thesis's jam cycle: a break-through at a kink (§2.4)
+        ax.plot(v[kj], fm[kj], "o", ms=13, mfc="none", mec="k", label="kink jam")
     passed = np.array([r.strand_crossings > 0 or r.tine_crossings > 0 for r in results])
     if passed.any():  # a contact gave way in these runs: their link accounting excludes the passage
         ax.plot(v[passed], fm[passed], "x", color="k", ms=9, label="strand passage")
