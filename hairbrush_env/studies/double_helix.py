@@ -625,7 +625,14 @@ def _smooth(y: np.ndarray, window: int) -> np.ndarray:
     return uniform_filter1d(y, size=window, mode="nearest")
 
 
-def jam_metrics(x: np.ndarray, f: np.ndarray, *, ratio: float = 1.25, window: int = 9) -> tuple[bool, float]:
+# the jam criterion's peak ratio and force smoothing, shared by the force-only flag and the break-through analysis
+_JAM_RATIO = 1.25
+_JAM_WINDOW = 9  # samples
+
+
+def jam_metrics(
+    x: np.ndarray, f: np.ndarray, *, ratio: float = _JAM_RATIO, window: int = _JAM_WINDOW
+) -> tuple[bool, float]:
     """Detect tine jamming in a force curve f(x) (thesis §2.4): ``(jammed, peak / level after the peak)``.
 
     The force jams when it rises to a peak and falls once the tine breaks through, while combing goes on. The
@@ -673,7 +680,7 @@ class Breakthrough(NamedTuple):
 
 
 def breakthroughs(
-    x: np.ndarray, f: np.ndarray, bend: np.ndarray, *, ratio: float = 1.25, window: int = 9
+    x: np.ndarray, f: np.ndarray, bend: np.ndarray, *, ratio: float = _JAM_RATIO, window: int = _JAM_WINDOW
 ) -> list[Breakthrough]:
     """Every break-through of the tine: the smoothed force falls from a local peak to below peak / ``ratio``.
 
