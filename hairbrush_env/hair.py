@@ -31,13 +31,15 @@ stroke read only 0.24 N. ``κ = 50`` was chosen from the measured force table (R
 ``scripts/benchmark_sim.py``): curliest full stroke > ``F_T`` = 10 N, straight < 1 N. Forces scale ≈ linearly with
 ``κ`` (curly full stroke: 3.0 N at 100 MPa, 8.7 N at 400 MPa with the previous discretization).
 
-Discretization and speed: wisps get :attr:`WigConfig.edges_per_turn` = 5 edges per curl turn, capped at
-``max_edges`` = 16 per strand (≥ 4 per turn for every preset: enough for the link to equal the number of turns and for
-contact, not for < 5 % spring stiffness — see :mod:`hairbrush_env.rods`). At a 10 ms step the 24-strand default
-wig alone would run 2.3× real time on one core; the 1 ms contact step that keeps strands from passing through each
-other caps it at ~0.2× (README "Wigs and scene", *Speed*). Hanging length is therefore ``≤ 4 P`` for curled presets: the
-curly presets use large curls (R = 12 mm) so that they hang 6–8 cm and a stroke from 2 cm below the scalp covers
-most of them (a wisp turn stands for many real curl turns: the price of few rod dofs, which set the step cost).
+Discretization and speed: strands are body chains by default (:mod:`hairbrush_env.rods`, ``rod_kind``), with
+:attr:`WigConfig.edges_per_turn` = 8 edges per curl turn, capped at ``max_edges`` = 32 per strand. At 8 edges per turn
+a chain helical spring is within 10 % of ``G d⁴ / (8 D³ N)`` (+8.3 %; the DER flex needs ~30 for that, +53 % at 8),
+so the curls hold their stiffness, and the link of an entwined pair equals its number of turns. The wave-1 flex wig
+(``rod_kind="flex"``, 5 edges per turn, ≤ 16 edges) is kept for side-by-side benchmarks (``docs/rods.md``).
+The 1 ms contact step that keeps strands from passing through each other sets the cost of a stroke
+(``scripts/benchmark_sim.py``). Hanging length is ``≤ 4 P`` for curled presets: the curly presets use large curls
+(R = 12 mm) so that they hang 6–8 cm and a stroke from 2 cm below the scalp covers most of them (a wisp turn stands
+for many real curl turns).
 
 Pre-brushed state (thesis §3.4: wigs are turned upside down and shaken for 10–15 s)
 -----------------------------------------------------------------------------------
@@ -70,6 +72,7 @@ from .topology._kernels import min_segment_distance
 
 __all__ = [
     "DEFAULT_WIG",
+    "HAIR_GEOM_GROUP",
     "HAIR_RGBA",
     "PRESETS",
     "WISP_COHESION",
@@ -85,6 +88,9 @@ __all__ = [
     "wig_layout",
     "wisp_young",
 ]
+
+HAIR_GEOM_GROUP = 1
+"""Visualisation group of the strands (visible by default; the scene's parts use groups 2–5)."""
 
 HAIR_RGBA = (0.30, 0.17, 0.08, 1.0)
 """Medium brown: dark enough to stand out against the light backdrop of the scene's ``webcam``."""
@@ -102,10 +108,11 @@ REAL_HAIR_YOUNG = 4e9
 # distance stayed ≥ 0.7 mm (> the 1.15 mm half-sum of radii in most samples; see the scene tests).
 CONTACT_SOLREF = (1e-3, 1.0)
 CONTACT_SOLIMP = (0.95, 0.99, 1e-4, 0.5, 2.0)
-# Contact margin of the wisps (hair–hair; a pair uses the larger margin of its two sides). Contacts hold their
-# load as a stiff spring about ``dist = margin``: at the clamp-level loads of a full coily stroke a wisp pair sank
-# 1.3 mm into each other without it (issue #3); with 0.5 mm (bristles: 1 mm, scene.TOOL_CONTACT_MARGIN) the
-# centerline distance stays above half the sum of radii (tests/test_scene.py::test_no_pass_through_*).
+# Contact margin of each wisp geom. MuJoCo 4.0.1 ADDS the margins of a contact's two geoms, so two wisps touch from
+# 2 × 0.5 = 1 mm surface gap and a wisp and a bristle from 0.5 + 1 = 1.5 mm (scene.TOOL_CONTACT_MARGIN); contacts hold
+# their load as a stiff spring about ``dist = margin``. Without it a coily wisp pair under full-stroke clamp loads sank
+# 1.3 mm into each other (issue #3); with it the centerline distance stays above half the sum of radii
+# (tests/test_scene.py::test_no_pass_through_*).
 CONTACT_MARGIN = 5e-4
 
 
@@ -173,7 +180,8 @@ class WigConfig:
     friction : float
         Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
     edges_per_turn : int
-        Edges per curl turn (≥ 4; the Gauss link of polygonal helices equals the turn count from 4 on).
+        Edges per curl turn (≥ 4; the Gauss link of polygonal helices equals the turn count from 4 on; a chain's curl
+        stiffness is within 10 % from 8 on, :mod:`hairbrush_env.studies.rod_validation`).
     min_edges, max_edges : int
         Bounds of the per-strand edge count (straight strands use ``min_edges``).
     handedness : {+1, -1}
@@ -192,6 +200,9 @@ class WigConfig:
         Mean shaking frequency [Hz].
     rgba : tuple of float
         Hair colour.
+    rod_kind : {"chain", "flex"}
+        MuJoCo representation of the strands (:data:`hairbrush_env.rods.ROD_KINDS`); ``"flex"`` only for
+        benchmarks against the wave-1 wig.
     """
 
     name: str = "custom"
@@ -205,9 +216,9 @@ class WigConfig:
     density: float = 1300.0
     damping: float = 0.02
     friction: float = 0.3
-    edges_per_turn: int = 5
+    edges_per_turn: int = 8
     min_edges: int = 12
-    max_edges: int = 16
+    max_edges: int = 32
     handedness: int = 1
     root_gap: float = 1.5e-3
     min_spacing: float = 6e-3
@@ -216,6 +227,7 @@ class WigConfig:
     shake_accel: float = 6.0
     shake_frequency: float = 3.0
     rgba: tuple[float, float, float, float] = HAIR_RGBA
+    rod_kind: rods.RodKind = "chain"
 
     def __post_init__(self) -> None:
         _require(
@@ -265,6 +277,9 @@ class WigConfig:
         _require(self.max_edges >= self.min_edges, "max_edges", "must be >= min_edges", self.max_edges)
         _require(self.handedness in (1, -1), "handedness", "must be +1 or -1", self.handedness)
         _require(len(self.rgba) == 4, "rgba", "must have 4 entries", self.rgba)
+        _require(
+            self.rod_kind in rods.ROD_KINDS, "rod_kind", f"must be one of {rods.ROD_KINDS}", self.rod_kind
+        )
         if self.curliness > 0.0:
             # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).
             _require(
@@ -364,7 +379,7 @@ class WigLayout:
     ----------
     wig : WigConfig
     names : tuple of str
-        Flex (rod) name of every strand.
+        Rod name of every strand.
     groups : tuple of tuple of int
         Strand indices of each entwined group (pairs and triples).
     axes : np.ndarray
@@ -536,7 +551,7 @@ def add_wig(
     Parameters
     ----------
     spec : mujoco.MjSpec
-        Target spec (call :func:`hairbrush_env.rods.configure_rod_options` on it too).
+        Target spec (call :func:`hairbrush_env.rods.configure_rod_options` on it too, with the wig's ``rod_kind``).
     wig : str or WigConfig
         Preset name or config.
     parent_body : MjsBody or str
@@ -575,6 +590,8 @@ def add_wig(
                 contact_solref=CONTACT_SOLREF,
                 contact_solimp=CONTACT_SOLIMP,
                 margin=CONTACT_MARGIN,
+                group=HAIR_GEOM_GROUP,
+                kind=cfg.rod_kind,
             ),
             parent=parent_body,
         )
@@ -596,10 +613,34 @@ class Entanglement:
         self.layout = layout
         self.views = [rods.RodView(model, n) for n in layout.names]
         self.pairs = layout.pairs
+        # Chains of one wig share their edge count: their vertices are one fancy-indexed read of data.xpos.
+        self._chain_ids = (
+            np.stack([v.bodies for v in self.views])
+            if all(v.kind == "chain" for v in self.views) and len({v.n_points for v in self.views}) == 1
+            else None
+        )
+        if self._chain_ids is not None:
+            tips = np.array([2.0 * model.geom_size[model.body_geomadr[v.tip_body], 1] for v in self.views])
+            self._tip_lengths = tips[:, None]
 
     def curves(self, data: mujoco.MjData) -> list[np.ndarray]:
         """Current centerlines of all strands."""
-        return [v.vertices(data) for v in self.views]
+        return (
+            list(self.curve_array(data))
+            if self._chain_ids is not None
+            else [v.vertices(data) for v in self.views]
+        )
+
+    def curve_array(self, data: mujoco.MjData) -> np.ndarray:
+        """Current centerlines stacked as ``(n_strands, n_points, 3)`` (every strand of a wig has the same edges)."""
+        if self._chain_ids is None:
+            return np.stack([v.vertices(data) for v in self.views])
+        ids = self._chain_ids
+        out = np.empty((ids.shape[0], ids.shape[1] + 1, 3))
+        out[:, :-1] = data.xpos[ids]
+        tip_axis = data.xmat[ids[:, -1]].reshape(-1, 3, 3)[:, :, 0]
+        out[:, -1] = out[:, -2] + tip_axis * self._tip_lengths
+        return out
 
     def pair_links(self, data: mujoco.MjData, curves: list[np.ndarray] | None = None) -> np.ndarray:
         """Open-curve Gauss link of every entwined pair (signed)."""

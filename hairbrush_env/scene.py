@@ -40,7 +40,6 @@ __all__ = [
     "PAIN_THRESHOLD",
     "TOOL_CONTACT_MARGIN",
     "BrushingSim",
-    "PassThroughMonitor",
     "SceneConfig",
     "StrokeResult",
     "VelocityStep",
@@ -58,12 +57,17 @@ _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half h
 # Gap between the head plate's top and the scalp underside [m]: the stroke starts 2 cm below the roots at most. Closer
 # starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
 _SCALP_CLEARANCE = 0.009
-_WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
+_WORKSPACE_Z = (0.55, 0.93)
+# Free-space stepping (BrushingSim._needs_fine_step): the brush's and the hair's bounding boxes at least this far
+# apart [m] — a strand would have to move 0.5 m/s towards the brush to meet it within one 10 ms control period — and
+# no strand point moving more than half a wisp radius per control period (4 cm/s).
+_FREE_CLEARANCE = 0.005
+_QUIET_MOTION = 4e-4  # arm README: brushing workspace
 _TINE_PREFIX = "arm/brush/tine_"
 TOOL_CONTACT_MARGIN = 1e-3
-"""Contact margin [m] of the bristles and head plate: a wisp wrapped round a bristle near the clamp carries ~10 N on
-one contact and sinks ~2 mm into it (1 ms step); with the margin the contact pushes back from 1 mm outside the
-surface, so the hair–bristle centerline distance stays above half the sum of radii (1.15 mm; issue #3)."""
+"""Contact margin [m] of the bristles and head plate. MuJoCo 4.0.1 adds it to the wisp's own margin
+(``hair.CONTACT_MARGIN``), so a hair–tool contact acts from 1.5 mm surface gap: a wisp wrapped round a bristle near the
+clamp carries ~10 N on one contact and sank ~2 mm into it without a margin (1 ms step, flex wig, issue #3)."""
 
 
 @dataclass(frozen=True)
@@ -178,7 +182,7 @@ def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
     wig = config.wig_config
     spec = mujoco.MjSpec()
     spec.modelname = f"hairbrush_{wig.name}"
-    configure_rod_options(spec, timestep=config.timestep)
+    configure_rod_options(spec, timestep=config.timestep, kind=wig.rod_kind)
     # Elliptic cones: the rods docstring's contact settings were validated with them (pyramidal cones make thin
     # rods stick-slip on the bristles).
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
@@ -346,15 +350,11 @@ class BrushingSim:
         self._n_sub = max(1, round(self.config.control_dt / self.config.timestep))
         self._n_sub_contact = max(1, round(self.config.control_dt / self.config.contact_timestep))
         self._dt_contact = self.config.control_dt / self._n_sub_contact
-        bodies = [
-            self.model.body(f"{name}_{k}").id
-            for name, c in zip(self.layout.names, self.layout.curves, strict=True)
-            for k in range(1, len(c))
-        ]
-        self.hair_bodies = np.array(bodies, dtype=int)
-        # Divergence watch: every dof except the rods' twist hinges, whose tiny polar inertia lets them spin at
-        # hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
-        twist = {f"{n}_twist" for n in self.layout.names}
+        self._contact_solver = mujoco.mjtSolver(int(self.model.opt.solver))  # what the rods need in contact
+        self.hair_bodies = np.concatenate([v.bodies for v in self.entanglement_meter.views])
+        # Divergence watch: every dof except the flex rods' twist hinges, whose tiny polar inertia lets them spin
+        # at hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
+        twist = {f"{n}_twist" for n in self.layout.names} if self.wig.rod_kind == "flex" else set()
         self._watch_dofs = np.array(
             [
                 self.model.jnt_dofadr[j]
@@ -365,10 +365,12 @@ class BrushingSim:
         )
         self._renderer: mujoco.Renderer | None = None
         self._observers: list = []
+        self._step_observers: list = []
         self.n_steps = 0  # physics steps taken by strokes and velocity control (for benchmarks)
-        self._bristle_geoms = [
-            g for g in range(self.model.ngeom) if self.model.geom(g).name.startswith(_TINE_PREFIX)
-        ]
+        self._bristle_geoms = np.array(
+            [g for g in range(self.model.ngeom) if self.model.geom(g).name.startswith(_TINE_PREFIX)],
+            dtype=int,
+        )
         self.diverged = False
 
         # Wig geometry in the world: x range of the curtain (for the retracted brush) and the stroke depth.
@@ -378,6 +380,8 @@ class BrushingSim:
         self.retract_x = self.hair_x_range[0] - 0.015 - _BRISTLE_HALF
         plate = self.model.geom(_HEAD_PLATE).id
         self.top_z = float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - _SCALP_CLEARANCE
+        self._tool_geoms = np.append(self._bristle_geoms, plate)
+        self._last_curves: np.ndarray | None = None
         self.park = np.array([self.retract_x, 0.0, self.config.free_end_z - 0.02])
 
         # Base state: hair at rest (rest shape = qpos0), arm holding the park pose.
@@ -434,21 +438,28 @@ class BrushingSim:
         """Current centerlines of all strands (world)."""
         return self.entanglement_meter.curves(self.data)
 
-    def bristle_segments(self) -> list[np.ndarray]:
-        """Current axis segments ``(2, 3)`` of the brush's bristle capsules (world)."""
+    def hair_curve_array(self) -> np.ndarray:
+        """Current centerlines of all strands stacked as ``(n_strands, n_points, 3)`` (world)."""
+        return self.entanglement_meter.curve_array(self.data)
+
+    @property
+    def bristle_radius(self) -> float:
+        """Radius of the thinnest bristle capsule [m]."""
+        return float(self.model.geom_size[self._bristle_geoms, 0].min())
+
+    def bristle_segments(self) -> np.ndarray:
+        """Current axis segments of the brush's bristle capsules, ``(n_bristles, 2, 3)`` (world)."""
         m, d = self.model, self.data
-        out = []
-        for g in self._bristle_geoms:
-            half_axis = d.geom_xmat[g].reshape(3, 3)[:, 2] * m.geom_size[g, 1]
-            out.append(np.array([d.geom_xpos[g] - half_axis, d.geom_xpos[g] + half_axis]))
-        return out
+        g = self._bristle_geoms
+        half_axis = d.geom_xmat[g].reshape(-1, 3, 3)[:, :, 2] * m.geom_size[g, 1][:, None]
+        return np.stack([d.geom_xpos[g] - half_axis, d.geom_xpos[g] + half_axis], axis=1)
 
     # --------------------------------------------------------------------------------------- reset
     def settled_state(self, seed: int) -> np.ndarray:
         """The pre-brushed state for ``seed`` (from the cache, or shaken now and cached)."""
         state = self.cache.get(self.wig, seed, self.model_hash)
         if state is None:
-            self.model.opt.timestep = self.config.timestep
+            self._use_step(contact=False)
             hairmod.set_state(self.model, self.data, self._base_state)
             hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
             state = hairmod.get_state(self.model, self.data)
@@ -458,13 +469,14 @@ class BrushingSim:
     def reset(self, seed: int = 0) -> None:
         """Restore the cached pre-brushed wig for ``seed`` with the brush parked beside the hair (time = 0)."""
         state = self.settled_state(seed)
-        self.model.opt.timestep = self.config.timestep
+        self._use_step(contact=False)
         hairmod.set_state(self.model, self.data, state)
         self.data.time = 0.0
         self._q = self.controller.arm_qpos(self.data)
         self._target = self.park.copy()
         self.diverged = False
         self._warn0 = self._warnings()
+        self._last_curves = None
         ends = np.array([c[-1] for c in self.hair_curves()])
         self.hair_bottom = float(ends[:, 2].min())
         self.load_cell.reset(self.data)
@@ -477,6 +489,15 @@ class BrushingSim:
 
     def remove_observer(self, fn) -> None:
         self._observers.remove(fn)
+
+    def add_step_observer(self, fn) -> None:
+        """Call ``fn(sim)`` after every physics step of strokes and velocity control (e.g. a pass-through check:
+        strands cross within one 1 ms step, which 10 Hz samples miss). Positions seen are those MuJoCo computed at
+        the start of the step, so consecutive calls see consecutive states."""
+        self._step_observers.append(fn)
+
+    def remove_step_observer(self, fn) -> None:
+        self._step_observers.remove(fn)
 
     # --------------------------------------------------------------------------------------- stepping
     def _warnings(self) -> int:
@@ -493,18 +514,53 @@ class BrushingSim:
             self.diverged = True
         return self.diverged
 
+    def _needs_fine_step(self, target: np.ndarray) -> bool:
+        """Whether the next control period must run at the contact step.
+
+        It must while the brush's bounding box (bristles and head plate, swept towards ``target``) is within
+        :data:`_FREE_CLEARANCE` of the hair's, and while any strand point moved more than :data:`_QUIET_MOTION` in the
+        last control period: at 10 ms, strands swinging after a stroke cross each other like strands under the brush.
+        Everything else — approach, parking, a brush wholly below hair that has come to rest — is free space.
+        """
+        d = self.data
+        curves = self.hair_curve_array()
+        last, self._last_curves = self._last_curves, curves
+        if last is not None and float(np.abs(curves - last).max()) > _QUIET_MOTION:
+            return True
+        g = self._tool_geoms
+        reach = self.model.geom_rbound[g][:, None]
+        sweep = np.abs(np.asarray(target, dtype=float) - d.site_xpos[self._tcp_site])
+        lo = (d.geom_xpos[g] - reach).min(axis=0) - sweep
+        hi = (d.geom_xpos[g] + reach).max(axis=0) + sweep
+        gap = np.maximum(lo - curves.max(axis=(0, 1)), curves.min(axis=(0, 1)) - hi).max()
+        return bool(gap < _FREE_CLEARANCE)
+
+    def _use_step(self, *, contact: bool) -> None:
+        """Step size and solver for the brush in the hair (fine step, the rods' solver) or in free space.
+
+        Chains are solved with PGS in contact (rods.configure_rod_options), but under the discrete integrator PGS
+        integrates actuator gains explicitly: at the 10 ms free-space step the arm's servos (kv = 80, armature 0.2,
+        explicit limit ≈ 5 ms) oscillated at 3 rad/s. Free-space steps therefore use Newton, which keeps the servos
+        implicit; at the 1 ms contact step the explicit servos are stable.
+        """
+        m = self.model
+        m.opt.timestep = self._dt_contact if contact else self.config.timestep
+        m.opt.solver = self._contact_solver if contact else mujoco.mjtSolver.mjSOL_NEWTON
+
     def _tick(self, target: np.ndarray, vel: np.ndarray | None, samples: list | None) -> bool:
         """One control period: track ``target``, step the physics; returns False once diverged."""
         if self.diverged:
             return False
         self._q = self.controller.track(self.data, target, vel, q_init=self._q)
         # Fine physics step while the brush is (or is about to be) in the hair (SceneConfig.contact_timestep).
-        in_hair = max(float(target[0]), float(self.data.site_xpos[self._tcp_site, 0])) > self.retract_x + 1e-3
+        in_hair = self._needs_fine_step(target)
         n_sub = self._n_sub_contact if in_hair else self._n_sub
-        self.model.opt.timestep = self._dt_contact if in_hair else self.config.timestep
+        self._use_step(contact=in_hair)
         self.n_steps += n_sub
         for _ in range(n_sub):
             mujoco.mj_step(self.model, self.data)
+            for fn in self._step_observers:
+                fn(self)
             s = self.load_cell.update(self.data)
             if s is not None:
                 if samples is not None:
@@ -694,51 +750,3 @@ class BrushingSim:
     def replace_config(self, **changes: object) -> SceneConfig:
         """Convenience: a copy of this sim's config with ``changes`` (build a new sim from it)."""
         return dataclasses.replace(self.config, **changes)
-
-
-class PassThroughMonitor:
-    """Watches for strands passing through each other or through bristles (issue #3's "must not happen").
-
-    Call :meth:`update` once per control step (or register the instance with :meth:`BrushingSim.add_observer` to
-    check at every 10 Hz load-cell sample); it keeps the minimum hair–hair and hair–bristle centerline distances and
-    the largest change of any entwined pair's link between two checks.
-    """
-
-    #: Largest allowed change of an entwined pair's link between two checks (issue #3).
-    MAX_LINK_JUMP = 0.5
-
-    def __init__(self, sim: BrushingSim) -> None:
-        self.hair_hair = self.hair_bristle = math.inf
-        self.max_link_jump = 0.0
-        self._lk = sim.pair_links()
-        # "Passing through" = centerlines closer than half the sum of the two radii.
-        r = sim.wig.strand_radius
-        bristle = float(sim.model.geom_size[sim._bristle_geoms, 0].min())
-        self.hair_hair_limit = r
-        self.hair_bristle_limit = 0.5 * (r + bristle)
-
-    @property
-    def passed(self) -> bool:
-        """True while no pass-through has been seen: both distances above their limits, link jumps ≤ 0.5."""
-        return (
-            self.hair_hair > self.hair_hair_limit
-            and self.hair_bristle > self.hair_bristle_limit
-            and self.max_link_jump <= self.MAX_LINK_JUMP
-        )
-
-    def update(self, sim: BrushingSim) -> None:
-        from .topology._kernels import min_segment_distance
-
-        curves = sim.hair_curves()
-        d = hairmod.min_distance_matrix(curves)
-        self.hair_hair = min(self.hair_hair, float(d[np.triu_indices(len(curves), 1)].min()))
-        bristles = sim.bristle_segments()
-        self.hair_bristle = min(
-            self.hair_bristle, min(float(min_segment_distance(c, b)) for c in curves for b in bristles)
-        )
-        lk = sim.pair_links()
-        self.max_link_jump = max(self.max_link_jump, float(np.abs(lk - self._lk).max()))
-        self._lk = lk
-
-    def __call__(self, sim: BrushingSim, sample: object) -> None:
-        self.update(sim)

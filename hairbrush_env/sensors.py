@@ -8,9 +8,10 @@ the site reads +9.81 N along the site's up axis.)  The world-frame force is ther
 
     F_world = R_site @ F_site,        R_site = data.site_xmat[load_cell].reshape(3, 3)
 
-**Flex contacts.** MuJoCo 4.0's force/torque sensors (and ``cfrc_ext``) leave out contacts with flex elements:
-a rod resting on a sensorized plate reads as the plate's weight alone (checked in ``tests/test_sensors.py``).
-Hair is made of flexes, so :meth:`LoadCell.raw` adds the missing term itself: for every contact between a geom
+**Flex contacts.** MuJoCo 4.0's force/torque sensors (and ``cfrc_ext``) see the contacts of geoms — body-chain
+hair, the default — but leave out contacts with flex elements: a flex rod resting on a sensorized plate reads as the
+plate's weight alone (checked in ``tests/test_sensors.py``). For flex hair :meth:`LoadCell.raw` therefore adds the
+missing term itself (it finds nothing to add for chains): for every contact between a geom
 of the sensor's subtree and a flex, the contact force on the subtree (``mj_contactForce``, contact frame →
 world) and its moment about the site; the parent must balance it, so the reading changes by minus that wrench.
 

@@ -1,10 +1,13 @@
-"""Benchmark the brushing envs (prints a table).
+"""Benchmark the brushing envs (prints tables).
 
     python scripts/benchmark_env.py [--quick] [--wig curly]
 
-Env steps per second and simulated seconds per wall-clock second for HairBrush-v0 (one step = one stroke) and
-HairBrushContinuous-v0 (one step = 0.1 s), with state vs state+image observations, and 1 vs 2 vectorized workers
-(gymnasium AsyncVectorEnv). All rows come from one run, so compare ratios between rows; the machine is shared.
+1. Strokes per second of HairBrush-v0 (one step = one stroke, the same seeded actions), body-chain strands vs the
+   wave-1 flex wig, and 1 vs 2 vectorized workers (gymnasium AsyncVectorEnv, strokes/s summed over workers).
+2. Env steps per second and simulated seconds per wall-clock second of HairBrush-v0 and HairBrushContinuous-v0
+   (one step = 0.1 s) with state vs state+image observations.
+
+All rows come from one run, so compare ratios between rows; the machine is shared.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ import gymnasium as gym
 import numpy as np
 
 import hairbrush_env  # noqa: F401  (registers the envs)
+from hairbrush_env.hair import PRESETS
 
 
 def _policy_action(env_id: str, space, rng) -> np.ndarray:
@@ -60,12 +64,32 @@ def bench_vector(env_id: str, obs_mode: str, steps: int, workers: int, wig: str)
     return steps * workers / wall
 
 
+def strand_models(name: str) -> dict[str, object]:
+    """The default (chain) preset and the wave-1 flex wig of the same preset (5 edges per turn, ≤ 16 edges)."""
+    wig = PRESETS[name]
+    return {"chain": wig, "flex wave 1": wig.replace(rod_kind="flex", edges_per_turn=5, max_edges=16)}
+
+
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--quick", action="store_true", help="fewer steps")
-    p.add_argument("--wig", default="curly")
+    p.add_argument("--wig", default="curly", choices=list(PRESETS))
     a = p.parse_args()
     n_stroke, n_cont = (3, 20) if a.quick else (10, 100)
+    print(
+        f"## HairBrush-v0 strokes/s on '{a.wig}', chain vs flex, 1 vs 2 workers ({n_stroke} strokes each)\n"
+    )
+    print("| strands | workers | strokes/s | × flex | × 1 worker |")
+    print("|---|---:|---:|---:|---:|")
+    rates = {
+        (label, workers): bench_vector("HairBrush-v0", "state", n_stroke, workers, wig)
+        for label, wig in strand_models(a.wig).items()
+        for workers in (1, 2)
+    }
+    for (label, workers), sps in rates.items():
+        vs_flex = sps / rates[("flex wave 1", workers)]
+        print(f"| {label} | {workers} | {sps:.3f} | {vs_flex:.2f} | {sps / rates[(label, 1)]:.2f} |")
+    print(f"\n## Env speed by observation mode on '{a.wig}'\n")
     print("| env | obs | workers | steps/s | sim s / wall s |")
     print("|---|---|---:|---:|---:|")
     for env_id, n in (("HairBrush-v0", n_stroke), ("HairBrushContinuous-v0", n_cont)):

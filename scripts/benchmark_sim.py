@@ -1,8 +1,21 @@
-"""Simulation benchmarks for hairbrush_env.
+"""Simulation benchmarks: body-chain strands vs the wave-1 flex wig, side by side in one run.
 
-Run ``python scripts/benchmark_sim.py`` (or ``--quick``). Each section is a function taking the parsed arguments
-and printing a markdown table; add new sections (e.g. wig strand-count scaling) to :data:`SECTIONS`. All physics
-lives in :mod:`hairbrush_env.rods`; this script only sweeps parameters and formats results.
+    python scripts/benchmark_sim.py [--quick] [--section NAME ...]
+
+Sections (each prints a markdown table; every row of a table comes from this one process, so compare ratios):
+
+* ``validation`` — cantilever and helical-spring errors of both rod kinds against beam/spring theory;
+* ``rest`` — CPU ms per physics step of the whole scene at the 1 ms contact step, hair settled;
+* ``stroke`` — a full pull-through stroke (b_l = 1, no abort): CPU s, ms/step, real-time factor on CPU time,
+  contacts and solver iterations, for 24 and 48 strands;
+* ``solver`` — PGS iteration cap (and CG) of the chain wig: CPU vs how far squeezed strands sink into each other;
+* ``pass_through`` — full strokes through straight, curly and coily at three seeds, every physics step checked;
+* ``profile`` — where a stroke's CPU goes: MuJoCo's stages, the Python around them, the per-step pass-through check;
+* ``force_table`` — maximum force vs curliness and b_l (thesis Fig. 3.7) with the per-step pass-through check.
+
+Cases: ``chain`` (the default wig), ``flex wave 1`` (the first release's wig: DER flex, 5 edges per curl turn, ≤ 16
+edges) and ``chain, wave-1 edges`` (the same discretization as a chain: the like-for-like comparison).
+Single-thread physics costs use CPU time (``time.process_time``).
 """
 
 from __future__ import annotations
@@ -14,7 +27,9 @@ from collections.abc import Callable, Sequence
 import mujoco
 import numpy as np
 
-from hairbrush_env import hair, rods, scene
+from hairbrush_env import hair, scene
+from hairbrush_env.pass_through import PassThroughMonitor
+from hairbrush_env.studies import rod_validation
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -23,142 +38,219 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     return "\n".join(lines)
 
 
-def section_rod_convergence(args: argparse.Namespace) -> None:
-    """Cantilever (gravity and tip load) and helical-spring errors vs discretization."""
-    edges = (10, 20, 50) if args.quick else (10, 20, 50, 100, 200)
-    print("\n## Rod convergence: 0.2 m cantilever, r = 1 mm, E = 10 GPa, ρ = 1300 kg/m³, dt = 2 ms\n")
-    rows = []
-    for n in edges:
-        g = rods.cantilever_study(n, load="gravity")
-        t = rods.cantilever_study(n, load="tip")
-        rows.append(
-            [
-                str(n),
-                f"{100 * g.rel_error:+.3f}",
-                f"{100 * t.rel_error:+.3f}",
-                f"{100 * max(abs(g.length_error), abs(t.length_error)):.1e}",
-                f"{g.steps_per_second:,.0f}",
-            ]
-        )
+def wig_cases(base: hair.WigConfig) -> dict[str, hair.WigConfig]:
+    """The compared strand models of one wig (see the module docstring)."""
+    return {
+        "chain": base,
+        "chain, wave-1 edges": base.replace(edges_per_turn=5, max_edges=16),
+        "flex wave 1": base.replace(rod_kind="flex", edges_per_turn=5, max_edges=16),
+    }
+
+
+def section_validation(args: argparse.Namespace) -> None:
+    """Cantilever (gravity, end load) and helical spring vs theory, chain and flex."""
     print(
-        _table(["edges", "gravity tip err %", "end-load tip err %", "max abs length err %", "steps/s"], rows)
+        "\n## Rod validation: 0.2 m cantilever (r = 1 mm, E = 10 GPa) and helical spring (3 turns, D = 20 mm)\n"
     )
-
-    per_turn = (10, 20, 30) if args.quick else (10, 20, 30, 40, 80)
-    print("\n## Helical spring (3 turns, D = 20 mm, d = 2 mm, pitch 4 mm) vs k = G d⁴ / (8 D³ N)\n")
     rows = []
-    for p in per_turn:
-        h = rods.helix_study(p)
-        rows.append(
-            [
-                str(p),
-                str(h.n_edges),
-                f"{100 * h.rel_error:+.2f}",
-                f"{100 * abs(h.length_error):.1e}",
-                f"{h.steps_per_second:,.0f}",
-            ]
-        )
-    print(_table(["edges/turn", "edges", "stiffness err %", "abs length err %", "steps/s"], rows))
-
-
-def _timed_sim(wig: hair.WigConfig, **cfg: object) -> tuple[scene.BrushingSim, float, float, float]:
-    """Build a sim; return it with build time, cold (shake) reset time and cached reset time [s]."""
-    t0 = time.perf_counter()
-    sim = scene.BrushingSim(scene.SceneConfig(wig=wig, **cfg))
-    t1 = time.perf_counter()
-    sim.reset(0)
-    t2 = time.perf_counter()
-    sim.reset(0)
-    t3 = time.perf_counter()
-    return sim, t1 - t0, t2 - t1, t3 - t2
-
-
-def _stroke_rtf(sim: scene.BrushingSim, fraction: float) -> tuple[float, float, scene.StrokeResult]:
-    n0 = sim.n_steps
-    t0 = time.perf_counter()
-    res = sim.stroke(fraction, force_threshold=np.inf, rng=np.random.default_rng(0))
-    wall = time.perf_counter() - t0
-    steps = (
-        sim.n_steps - n0
-    )  # the step is 1 ms in the hair and 10 ms outside, so count the real mj_step calls
-    return res.sim_time / wall, steps / wall, res
-
-
-def section_wig_scaling(args: argparse.Namespace) -> None:
-    """Real-time factor and steps/s of the full scene (arm + brush + head + wig) vs strand count and edges."""
-    base = hair.PRESETS[hair.DEFAULT_WIG]
-    counts = (8, 24) if args.quick else (8, 16, 24, 32, 48)
-    dt = scene.SceneConfig().timestep
-    print(
-        f"\n## Scene speed vs strand count: wig '{base.name}' (R/P = {base.curliness}), "
-        f"dt = {1e3 * dt:g} ms, one thread\n"
-    )
-    print(
-        "RTF and steps/s over a full stroke (approach, insertion, pull at 0.1 m/s, retraction) with hair-hair"
-    )
-    print("contact; reset = pre-brushed shake + settle (cold) vs restoring the cached state.\n")
+    for n in (10, 20) if args.quick else (10, 20, 40):
+        cells = [str(n)]
+        for kind in ("chain", "flex"):
+            g = rod_validation.cantilever_study(n, kind=kind)
+            t = rod_validation.cantilever_study(n, kind=kind, load="tip")
+            cells += [f"{100 * g.rel_error:+.2f}", f"{100 * t.rel_error:+.2f}"]
+        rows.append(cells)
+    print(_table(["edges", "chain gravity %", "chain end load %", "flex gravity %", "flex end load %"], rows))
+    print()
     rows = []
-    for n in counts:
-        wig = base.replace(n_strands=n, n_triples=2)
-        sim, t_build, t_cold, t_cached = _timed_sim(wig)
-        rtf, sps, res = _stroke_rtf(sim, 1.0)
-        rows.append(
-            [
-                str(n),
-                str(wig.n_edges + 1),
-                str(sim.model.nv),
-                f"{rtf:.2f}",
-                f"{sps:,.0f}",
-                f"{t_build:.1f}",
-                f"{t_cold:.2f}",
-                f"{1e3 * t_cached:.1f}",
-                str(res.diverged),
-            ]
-        )
-        sim.close()
+    for per_turn in (5, 8, 10) if args.quick else (5, 6, 8, 10, 20, 30):
+        cells = [str(per_turn)]
+        for kind in ("chain", "flex"):
+            h = rod_validation.helix_study(per_turn, kind=kind)
+            cells += [f"{100 * h.rel_error:+.1f}", f"{100 * abs(h.length_error):.0e}"]
+        rows.append(cells)
     print(
         _table(
-            [
-                "strands",
-                "vertices/strand",
-                "nv",
-                "RTF",
-                "steps/s",
-                "build s",
-                "cold reset s",
-                "cached reset ms",
-                "diverged",
-            ],
-            rows,
+            ["edges/turn", "chain k err %", "chain length err %", "flex k err %", "flex length err %"], rows
         )
     )
 
-    edges = (12, 16) if args.quick else (8, 12, 16, 20, 24)
+
+def _contact_step(sim: scene.BrushingSim) -> None:
+    sim.model.opt.timestep = sim.config.contact_timestep
+    sim.model.opt.solver = sim._contact_solver
+
+
+def section_rest(args: argparse.Namespace) -> None:
+    """CPU per physics step of the settled scene at the contact step (brush parked)."""
+    print("\n## Scene at rest, 1 ms contact step, CPU ms per physics step\n")
+    rows = []
+    for n in (24,) if args.quick else (24, 48):
+        base = hair.PRESETS[hair.DEFAULT_WIG].replace(n_strands=n)
+        ms_flex = None
+        for label, wig in wig_cases(base).items():
+            sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
+            sim.reset(0)
+            _contact_step(sim)
+            m, d = sim.model, sim.data
+            for _ in range(20):
+                mujoco.mj_step(m, d)
+            steps = 200 if args.quick else 1000
+            ncon = iters = 0
+            t0 = time.process_time()
+            for _ in range(steps):
+                mujoco.mj_step(m, d)
+                ncon += d.ncon
+                iters += int(d.solver_niter[0])
+            ms = 1e3 * (time.process_time() - t0) / steps
+            ms_flex = ms if label.startswith("flex") else ms_flex
+            rows.append([label, str(n), str(wig.n_edges), str(m.nv), f"{ms:.2f}", f"{1.0 / ms:.2f}",
+                         f"{ncon / steps:.0f}", f"{iters / steps:.1f}"])  # fmt: skip
+            sim.close()
+        for r in rows[-3:]:
+            r.append(f"{ms_flex / float(r[4]):.2f}")
+    print(_table(["model", "strands", "edges", "nv", "CPU ms/step", "RTF ceiling", "contacts", "solver iters",
+                  "× faster than flex"], rows))  # fmt: skip
+
+
+def stroke_stats(sim: scene.BrushingSim, seed: int) -> dict[str, float]:
+    """One full pull-through stroke from the cached state ``seed``: CPU, steps, contacts, iterations, force."""
+    sim.reset(seed)
+    ncon: list[int] = []
+    iters: list[int] = []
+
+    def sample(s: scene.BrushingSim) -> None:
+        ncon.append(s.data.ncon)
+        iters.append(int(s.data.solver_niter[0]))
+
+    sim.add_step_observer(sample)
+    n0 = sim.n_steps
+    t0 = time.process_time()
+    res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(seed))
+    cpu = time.process_time() - t0
+    sim.remove_step_observer(sample)
+    steps = sim.n_steps - n0
+    return dict(cpu=cpu, steps=steps, sim_time=res.sim_time, ncon=float(np.mean(ncon)), iters=float(np.mean(iters)),
+                f_max=res.max_force, diverged=res.diverged)  # fmt: skip
+
+
+def section_stroke(args: argparse.Namespace) -> None:
+    """Full pull-through stroke (b_l = 1, no abort) through the default wig, 24 and 48 strands."""
+    seeds = (0,) if args.quick else (0, 7, 11)
     print(
-        f"\n## Scene speed vs vertices per strand: {base.n_strands} strands of '{base.name}', "
-        f"dt = {1e3 * dt:g} ms\n"
+        f"\n## Full stroke through '{hair.DEFAULT_WIG}', b_l = 1, no abort, seeds {seeds} (mean), CPU time\n"
     )
     rows = []
-    for e in edges:
-        wig = base.replace(min_edges=e, max_edges=e)
-        sim, _, t_cold, _ = _timed_sim(wig)
-        rtf, sps, res = _stroke_rtf(sim, 1.0)
-        rows.append(
-            [str(e + 1), str(sim.model.nv), f"{rtf:.2f}", f"{sps:,.0f}", f"{t_cold:.2f}", str(res.diverged)]
-        )
+    for n in (24,) if args.quick else (24, 48):
+        base = hair.PRESETS[hair.DEFAULT_WIG].replace(n_strands=n)
+        cells = []
+        for label, wig in wig_cases(base).items():
+            sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
+            st = [stroke_stats(sim, s) for s in seeds]
+            sim.close()
+            mean = {
+                k: float(np.mean([s[k] for s in st]))
+                for k in ("cpu", "steps", "sim_time", "ncon", "iters", "f_max")
+            }
+            cells.append((label, wig, mean, any(s["diverged"] for s in st)))
+        flex_cpu = next(c[2]["cpu"] for c in cells if c[0].startswith("flex"))
+        for label, wig, mean, div in cells:
+            rows.append([label, str(n), str(wig.n_edges), f"{mean['cpu']:.2f}", f"{flex_cpu / mean['cpu']:.2f}",
+                         f"{1e3 * mean['cpu'] / mean['steps']:.2f}", f"{mean['sim_time'] / mean['cpu']:.2f}",
+                         f"{mean['ncon']:.0f}", f"{mean['iters']:.1f}", f"{mean['f_max']:.2f}",
+                         "yes" if div else "no"])  # fmt: skip
+    print(_table(["model", "strands", "edges", "CPU s/stroke", "× less CPU than flex", "CPU ms/step",
+                  "RTF (CPU)", "contacts", "solver iters", "F_max N", "diverged"], rows))  # fmt: skip
+
+
+def section_solver(args: argparse.Namespace) -> None:
+    """Contact solver and iteration cap of the chain wig: stroke CPU vs how far squeezed strands sink in."""
+    cases = [("PGS", 15), ("PGS", 30), ("PGS", 50), ("CG", 20)]
+    wigs = ("curly",) if args.quick else ("curly", "coily")
+    print(
+        "\n## Contact solver of chain strands: full stroke, b_l = 1, seed 0 (distances every physics step)\n"
+    )
+    rows = []
+    for name in wigs:
+        for solver, iters in cases:
+            sim = scene.BrushingSim(scene.SceneConfig(wig=name))
+            sim.model.opt.iterations = iters
+            sim._contact_solver = getattr(mujoco.mjtSolver, f"mjSOL_{solver}")
+            cpu = stroke_stats(sim, 0)["cpu"]
+            sim.reset(0)
+            mon = PassThroughMonitor(sim)
+            res = sim.stroke(1.0, force_threshold=np.inf)
+            sim.close()
+            rows.append([name, solver, str(iters), f"{cpu:.2f}", f"{res.max_force:.2f}",
+                         f"{mon.hair_hair_fraction:.2f}", f"{mon.hair_bristle_fraction:.2f}",
+                         str(len(mon.crossings))])  # fmt: skip
+    print(_table(["wig", "solver", "iterations", "CPU s/stroke", "F_max N", "hair–hair / Σr", "hair–bristle / Σr",
+                  "crossings"], rows))  # fmt: skip
+
+
+def section_pass_through(args: argparse.Namespace) -> None:
+    """Full strokes through straight, curly and coily at three seeds, every physics step checked."""
+    seeds = (0,) if args.quick else (0, 1, 2)
+    print(f"\n## Pass-through: full strokes (b_l = 1, no abort), seeds {seeds}, every physics step checked\n")
+    rows = []
+    for name in ("straight", "curly", "coily"):
+        sim = scene.BrushingSim(scene.SceneConfig(wig=name))
+        for seed in seeds:
+            sim.reset(seed)
+            mon = PassThroughMonitor(sim)
+            res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(seed))
+            mon.detach()
+            rows.append([name, str(seed), str(mon.steps), f"{res.max_force:.2f}", f"{mon.hair_hair_fraction:.2f}",
+                         f"{mon.hair_bristle_fraction:.2f}", str(len(mon.crossings)), f"{mon.max_link_jump:.3f}",
+                         "yes" if mon.passed else "NO"])  # fmt: skip
         sim.close()
-    print(_table(["vertices/strand", "nv", "RTF", "steps/s", "cold reset s", "diverged"], rows))
+    print(_table(["wig", "seed", "steps checked", "F_max N", "hair–hair / Σr", "hair–bristle / Σr", "crossings",
+                  "max one-step |ΔLk|", "passed"], rows))  # fmt: skip
+
+
+def section_profile(args: argparse.Namespace) -> None:
+    """Where one stroke's CPU goes (default wig, seed 0): MuJoCo stages, Python, the per-step check."""
+    print(f"\n## Profile of one full stroke through '{hair.DEFAULT_WIG}' (seed 0)\n")
+    sim = scene.BrushingSim(scene.SceneConfig(wig=hair.DEFAULT_WIG))
+    sim.reset(0)
+    d = sim.data
+    for t in d.timer:
+        t.duration, t.number = 0.0, 0
+    t_wall, t_cpu = time.perf_counter(), time.process_time()
+    res = sim.stroke(1.0, force_threshold=np.inf)
+    wall, cpu = time.perf_counter() - t_wall, time.process_time() - t_cpu
+    step = d.timer[int(mujoco.mjtTimer.mjTIMER_STEP)]
+    rows = [["whole stroke", f"{1e3 * wall:.0f}", "100", str(step.number)]]
+    for name in ("pos_kinematics", "pos_inertia", "pos_collision", "pos_make", "pos_project", "velocity",
+                 "constraint", "step"):  # fmt: skip
+        t = d.timer[int(getattr(mujoco.mjtTimer, f"mjTIMER_{name.upper()}"))]
+        rows.append(
+            [f"mujoco {name}", f"{1e3 * t.duration:.0f}", f"{100 * t.duration / wall:.0f}", str(t.number)]
+        )
+    rows.append(["outside mj_step (control, load cell, checks)", f"{1e3 * (wall - step.duration):.0f}",
+                 f"{100 * (wall - step.duration) / wall:.0f}", "—"])  # fmt: skip
+    sim.reset(0)
+    mon = PassThroughMonitor(sim)
+    t0 = time.process_time()
+    sim.stroke(1.0, force_threshold=np.inf)
+    checked = time.process_time() - t0
+    rows.append(["per-step pass-through check (extra, tests/benchmarks only)", f"{1e3 * (checked - cpu):.0f}",
+                 f"{100 * (checked - cpu) / cpu:.0f}", str(mon.steps)])  # fmt: skip
+    sim.close()
+    print(f"Stroke: {res.sim_time:.2f} s simulated, {cpu:.2f} s CPU, RTF {res.sim_time / cpu:.2f} (CPU); "
+          "MuJoCo's timers are wall-clock.\n")  # fmt: skip
+    print(_table(["part", "ms", "% of stroke", "calls"], rows))
 
 
 def section_force_table(args: argparse.Namespace) -> None:
-    """Maximum brushing force vs curliness and normalized stroke length b_l (thesis Fig. 3.7), with pass-through."""
+    """Maximum brushing force vs curliness and normalized stroke length b_l (thesis Fig. 3.7), checked per step."""
     names = ["straight", "curly", "coily"] if args.quick else list(hair.PRESETS)
     fractions = (0.33, 1.0) if args.quick else (0.33, 0.67, 1.0)
     print("\n## Max brushing force [N] vs curliness and b_l (seed 0, 0.1 m/s, no abort; thesis F_T = 10 N)\n")
     print(
-        "Cells: F_max (Σ|Lk| before→after) [min hair–hair / hair–bristle centerline distance mm, max |ΔLk| per"
+        "Cells: F_max (Σ|Lk| before→after) [smallest hair–hair / hair–bristle distance as a fraction of the sum"
     )
-    print("0.1 s]; no pass-through needs hair–hair > r = 0.8 mm, hair–bristle > 1.15 mm and |ΔLk| ≤ 0.5.\n")
+    print("of radii, crossings], every physics step checked.\n")
     rows = []
     for name in names:
         wig = hair.PRESETS[name]
@@ -167,13 +259,12 @@ def section_force_table(args: argparse.Namespace) -> None:
         for b in fractions:
             sim.reset(0)
             e0 = sim.entanglement()
-            mon = scene.PassThroughMonitor(sim)
-            sim.add_observer(mon)
+            mon = PassThroughMonitor(sim)
             res = sim.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
-            sim.remove_observer(mon)
+            mon.detach()
             row.append(
                 f"{res.max_force:.2f} ({e0:.1f}→{sim.entanglement():.1f}) "
-                f"[{1e3 * mon.hair_hair:.2f} / {1e3 * mon.hair_bristle:.2f}, {mon.max_link_jump:.2f}]"
+                f"[{mon.hair_hair_fraction:.2f} / {mon.hair_bristle_fraction:.2f}, {len(mon.crossings)}]"
                 + (" DIV" if res.diverged else "")
             )
         row.insert(3, f"{sim.hanging_length:.3f}")
@@ -182,174 +273,21 @@ def section_force_table(args: argparse.Namespace) -> None:
     print(_table(["wig", "R/P", "length m", "hanging m"] + [f"b_l={b}" for b in fractions], rows))
 
 
-def _step_cost(sim: scene.BrushingSim, dt: float, n: int) -> tuple[float, float, dict[str, float]]:
-    """CPU ms per ``mj_step`` of the sim's current state at step ``dt``, mean Newton iterations, timer shares."""
-    m, d = sim.model, sim.data
-    m.opt.timestep = dt
-    for _ in range(10):
-        mujoco.mj_step(m, d)
-    for t in d.timer:
-        t.duration, t.number = 0.0, 0
-    iters = 0
-    t0 = time.process_time()
-    for _ in range(n):
-        mujoco.mj_step(m, d)
-        iters += int(d.solver_niter[0])
-    cpu = (time.process_time() - t0) / n
-    stage = {
-        name: d.timer[int(getattr(mujoco.mjtTimer, f"mjTIMER_{name.upper()}"))].duration
-        for name in ("constraint", "position", "velocity", "pos_collision")
-    }
-    total = d.timer[int(mujoco.mjtTimer.mjTIMER_STEP)].duration
-    return 1e3 * cpu, iters / n, {k: v / total for k, v in stage.items()}
-
-
-def section_step_cost(args: argparse.Namespace) -> None:
-    """Where the time goes: CPU cost of one physics step of the default wig, and pass-through vs contact step."""
-    base = hair.PRESETS[hair.DEFAULT_WIG]
-    print(
-        f"\n## Step cost of the default scene ('{base.name}', {base.n_strands} strands), hair at rest, "
-        "no contacts (CPU time, one thread)\n"
-    )
-    sim = scene.BrushingSim(scene.SceneConfig(wig=base))
-    sim.reset(0)
-    rows = []
-    for dt in (0.01, 0.001):
-        ms, it, share = _step_cost(sim, dt, 100 if args.quick else 300)
-        rows.append(
-            [
-                f"{1e3 * dt:g}",
-                str(sim.model.nv),
-                str(sim.data.nefc),
-                f"{it:.2f}",
-                f"{ms:.2f}",
-                f"{dt / (1e-3 * ms):.2f}",
-                " / ".join(
-                    f"{100 * share[k]:.0f}" for k in ("constraint", "position", "velocity", "pos_collision")
-                ),
-            ]
-        )
-    sim.close()
-    # The same rods without arm, brush and head: the floor set by MuJoCo's discrete elastic rods themselves.
-    wig_specs = [
-        rods.RodSpec(
-            name=f"r{i}",
-            points=np.stack([np.full(base.n_edges + 1, 0.005 * i), np.zeros(base.n_edges + 1),
-                             np.linspace(0.0, -base.length, base.n_edges + 1)], axis=1),
-            radius=base.strand_radius,
-            young=hair.wisp_young(base.strand_radius),
-            clamp="start",
-        )
-        for i in range(base.n_strands)
-    ]  # fmt: skip
-    bare = rods.build_rod_model(wig_specs, timestep=0.001)
-    bare_data = mujoco.MjData(bare)
-    for _ in range(10):
-        mujoco.mj_step(bare, bare_data)
-    t0 = time.process_time()
-    n_bare = 100 if args.quick else 300
-    for _ in range(n_bare):
-        mujoco.mj_step(bare, bare_data)
-    bare_ms = 1e3 * (time.process_time() - t0) / n_bare
-    rows.append(["1 (rods only)", str(bare.nv), str(bare_data.nefc), f"{bare_data.solver_niter[0]}",
-                 f"{bare_ms:.2f}", f"{1.0 / bare_ms:.2f}", "—"])  # fmt: skip
-    print(
-        _table(
-            [
-                "dt ms",
-                "nv",
-                "constraint rows",
-                "Newton iters",
-                "CPU ms/step",
-                "RTF ceiling",
-                "% constraint / position / velocity / collision",
-            ],
-            rows,
-        )
-    )
-
-    print("\n## Solver options on a full `curly` stroke at the 1 ms contact step (RTF on CPU time)\n")
-    rows = []
-    for label, tol, sleep in (("defaults (tolerance 1e-8)", None, False), ("tolerance 1e-6", 1e-6, False),
-                              ("sleeping islands", None, True)):  # fmt: skip
-        sim = scene.BrushingSim(scene.SceneConfig(wig=base))
-        if tol is not None:
-            sim.model.opt.tolerance = tol
-        if sleep:  # the flag acts at data initialization
-            sim.model.opt.enableflags |= int(mujoco.mjtEnableBit.mjENBL_SLEEP)
-            mujoco.mj_resetData(sim.model, sim.data)
-        sim.reset(0)
-        stats = []
-        sim.add_observer(
-            lambda s, _, stats=stats: stats.append((int((s.data.tree_asleep >= 0).sum()), s.data.nefc))
-        )
-        t0 = time.process_time()
-        res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(0))
-        cpu = time.process_time() - t0
-        st = np.array(stats)
-        rows.append([label, f"{res.sim_time / cpu:.3f}", f"{res.max_force:.2f}", f"{st[:, 0].mean():.0f}",
-                     f"{st[:, 1].mean():.0f}"])  # fmt: skip
-        sim.close()
-    print(_table(["options", "RTF (CPU)", "F_max N", "trees asleep (mean)", "constraint rows (mean)"], rows))
-
-    names = ["curly"] if args.quick else ["curly", "coily"]
-    steps = (0.001, 0.005) if args.quick else (0.001, 0.0025, 0.005, 0.01)
-    print(
-        "\n## Pass-through and speed vs contact step (full stroke, b_l = 1, seed 0; RTF on CPU time; "
-        "no pass-through needs hair–hair > 0.8 mm, hair–bristle > 1.15 mm, |ΔLk| ≤ 0.5)\n"
-    )
-    rows = []
-    for name in names:
-        for dt in steps:
-            sim = scene.BrushingSim(scene.SceneConfig(wig=hair.PRESETS[name], contact_timestep=dt))
-            sim.reset(0)
-            mon = scene.PassThroughMonitor(sim)
-            sim.add_observer(mon)
-            t0 = time.process_time()
-            res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(0))
-            cpu = time.process_time() - t0
-            rows.append(
-                [
-                    name,
-                    f"{1e3 * dt:g}",
-                    f"{res.sim_time / cpu:.2f}",
-                    f"{res.max_force:.2f}",
-                    f"{1e3 * mon.hair_hair:.2f}",
-                    f"{1e3 * mon.hair_bristle:.2f}",
-                    f"{mon.max_link_jump:.2f}",
-                    "yes" if mon.passed else "NO",
-                ]
-            )
-            sim.close()
-    print(
-        _table(
-            [
-                "wig",
-                "contact dt ms",
-                "RTF (CPU)",
-                "F_max N",
-                "hair–hair mm",
-                "hair–bristle mm",
-                "max |ΔLk|",
-                "no pass-through",
-            ],
-            rows,
-        )
-    )
-
-
 SECTIONS: list[Callable[[argparse.Namespace], None]] = [
-    section_rod_convergence,
-    section_wig_scaling,
+    section_validation,
+    section_rest,
+    section_stroke,
+    section_solver,
+    section_pass_through,
+    section_profile,
     section_force_table,
-    section_step_cost,
 ]
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Parse arguments and run every section in :data:`SECTIONS`."""
+    """Parse arguments and run the chosen sections of :data:`SECTIONS`."""
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="fewer / coarser cases (CI smoke run)")
+    parser.add_argument("--quick", action="store_true", help="fewer / coarser cases (smoke run)")
     parser.add_argument(
         "--section",
         action="append",

@@ -167,18 +167,20 @@ def test_known_static_load_read_back_after_tare(arm_brush: mujoco.MjModel, yaw_d
         assert np.linalg.norm(site_frame[:2] - world[:2]) > 0.2
 
 
-def test_flex_contacts_reach_the_load_cell():
-    """MuJoCo's force sensor ignores flex contacts; LoadCell adds them: a rod resting on a sensorized plate must
-    read as plate + rod weight, with the rod's moment about the site (statics, exact)."""
+@pytest.mark.parametrize("kind", ["chain", "flex"])
+def test_rod_contacts_reach_the_load_cell(kind: str):
+    """A rod resting on a sensorized plate reads as plate + rod weight, with the rod's moment about the site
+    (statics, exact). MuJoCo's force sensor sees a chain's capsule contacts but ignores flex contacts, which
+    LoadCell adds itself."""
     from hairbrush_env.rods import RodSpec, add_rod, configure_rod_options, straight_rod_points
 
     spec = mujoco.MjSpec()
-    configure_rod_options(spec, timestep=2e-3)
+    configure_rod_options(spec, timestep=2e-3, kind=kind)
     plate = spec.worldbody.add_body(name="plate", pos=[0, 0, 0.1])
     plate.add_site(name="cell")
     plate.add_geom(type=mujoco.mjtGeom.mjGEOM_BOX, size=[0.2, 0.2, 0.005], mass=0.1)
-    for name, kind in (("f", mujoco.mjtSensor.mjSENS_FORCE), ("t", mujoco.mjtSensor.mjSENS_TORQUE)):
-        spec.add_sensor(name=name, type=kind, objtype=mujoco.mjtObj.mjOBJ_SITE, objname="cell")
+    for name, sensor in (("f", mujoco.mjtSensor.mjSENS_FORCE), ("t", mujoco.mjtSensor.mjSENS_TORQUE)):
+        spec.add_sensor(name=name, type=sensor, objtype=mujoco.mjtObj.mjOBJ_SITE, objname="cell")
     rod = RodSpec(
         name="rod",
         points=straight_rod_points([0.0, 0, 0.115], [1, 0, 0], 0.15, n_edges=10),
@@ -187,6 +189,7 @@ def test_flex_contacts_reach_the_load_cell():
         density=1300,
         clamp=None,
         friction=0.5,
+        kind=kind,
     )
     add_rod(spec, rod)
     model = spec.compile()
@@ -197,7 +200,14 @@ def test_flex_contacts_reach_the_load_cell():
     for _ in range(2000):
         mujoco.mj_step(model, data)
     w_rod = rod.length * rod.linear_density * 9.81
-    assert data.sensordata[2] == pytest.approx(0.1 * 9.81)  # the bare sensor misses the rod entirely
+    if kind == "flex":
+        assert data.sensordata[2] == pytest.approx(0.1 * 9.81)  # the bare sensor misses the rod entirely
     wrench = cell.raw(data)
     assert wrench[2] == pytest.approx(0.1 * 9.81 + w_rod, rel=1e-6)
-    assert wrench[4] == pytest.approx(-0.075 * w_rod, rel=1e-4)  # rod's centre of mass 7.5 cm along +x
+    from hairbrush_env.rods import rod_vertices
+
+    mujoco.mj_forward(model, data)
+    ends = rod_vertices(model, data, "rod")[[0, -1]]
+    com_x = float(ends[:, 0].mean())  # straight uniform rod, ~7.5 cm along +x (it may slide a few µm)
+    assert com_x == pytest.approx(0.075, abs=1e-4)
+    assert wrench[4] == pytest.approx(-com_x * w_rod, rel=1e-4)

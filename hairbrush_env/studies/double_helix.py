@@ -557,6 +557,8 @@ def _build(setup: CombingSetup):
         condim=condim,
         contact_solref=(setup.contact_timeconst, _DAMPRATIO),
         contact_solimp=_SOLIMP,
+        # The combing claims (§2.4) were validated on DER flexes; chains would change the measured tables.
+        kind="flex",
     )
     rods = [
         RodSpec("strand_a", a, rgba=(0.0, 0.45, 0.7, 1.0), **common),

@@ -259,3 +259,125 @@ def _segment_distance(p0, p1, q0, q1):  # pragma: no cover - compiled
                 s = min(max((bb - c) / a, 0.0), 1.0)
     dx = (p0 + d1 * s) - (q0 + d2 * t)
     return math.sqrt(dx @ dx)
+
+
+@nb.njit(cache=True, inline="always")
+def _segdist_scalar(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz):  # pragma: no cover - compiled
+    # _segment_distance on scalars (no temporaries): segments a→b and c→d.
+    d1x, d1y, d1z = bx - ax, by - ay, bz - az
+    d2x, d2y, d2z = dx - cx, dy - cy, dz - cz
+    rx, ry, rz = ax - cx, ay - cy, az - cz
+    a = d1x * d1x + d1y * d1y + d1z * d1z
+    e = d2x * d2x + d2y * d2y + d2z * d2z
+    f = d2x * rx + d2y * ry + d2z * rz
+    c = d1x * rx + d1y * ry + d1z * rz
+    bb = d1x * d2x + d1y * d2y + d1z * d2z
+    eps = 1e-300
+    if a <= eps or e <= eps:  # degenerate segments do not occur in rods; fall back to the endpoint gap
+        return math.sqrt(rx * rx + ry * ry + rz * rz)
+    den = a * e - bb * bb
+    s = min(max((bb * f - c * e) / den, 0.0), 1.0) if den > eps else 0.0
+    t = (bb * s + f) / e
+    if t < 0.0:
+        t = 0.0
+        s = min(max(-c / a, 0.0), 1.0)
+    elif t > 1.0:
+        t = 1.0
+        s = min(max((bb - c) / a, 0.0), 1.0)
+    qx = rx + d1x * s - d2x * t
+    qy = ry + d1y * s - d2y * t
+    qz = rz + d1z * s - d2z * t
+    return math.sqrt(qx * qx + qy * qy + qz * qz)
+
+
+@nb.njit(cache=True)
+def close_pairs(curves, gap):  # pragma: no cover - compiled
+    """Index pairs ``(a, b)``, ``a < b``, of ``(S, V, 3)`` polylines whose bounding boxes are closer than ``gap``."""
+    s_n = curves.shape[0]
+    lo = np.empty((s_n, 3))
+    hi = np.empty((s_n, 3))
+    for s in range(s_n):
+        for k in range(3):
+            lo[s, k] = curves[s, :, k].min()
+            hi[s, k] = curves[s, :, k].max()
+    out = np.empty((s_n * (s_n - 1) // 2, 2), dtype=np.int64)
+    count = 0
+    for a in range(s_n):
+        for b in range(a + 1, s_n):
+            g = -np.inf
+            for k in range(3):
+                g = max(g, lo[a, k] - hi[b, k], lo[b, k] - hi[a, k])
+            if g < gap:
+                out[count, 0] = a
+                out[count, 1] = b
+                count += 1
+    return out[:count]
+
+
+@nb.njit(cache=True, parallel=True)
+def pair_distance_and_link(curves, pairs, link_within):  # pragma: no cover - compiled
+    """Minimum segment distance of each pair, and its open Gauss integral (= ``linking_number(closed=False)``) where
+    that distance is below ``link_within`` (NaN elsewhere: the integral costs an atan2 per segment pair)."""
+    n = pairs.shape[0]
+    v = curves.shape[1]
+    dist = np.empty(n)
+    link = np.full(n, np.nan)
+    for p in nb.prange(n):
+        a = curves[pairs[p, 0]]
+        b = curves[pairs[p, 1]]
+        best = np.inf
+        for i in range(v - 1):
+            for j in range(v - 1):
+                # Segment bounding boxes farther apart than the best distance so far cannot improve it.
+                g = 0.0
+                for k in range(3):
+                    g = max(
+                        g,
+                        min(b[j, k], b[j + 1, k]) - max(a[i, k], a[i + 1, k]),
+                        min(a[i, k], a[i + 1, k]) - max(b[j, k], b[j + 1, k]),
+                    )
+                if g >= best:
+                    continue
+                d = _segdist_scalar(
+                    a[i, 0], a[i, 1], a[i, 2], a[i + 1, 0], a[i + 1, 1], a[i + 1, 2],
+                    b[j, 0], b[j, 1], b[j, 2], b[j + 1, 0], b[j + 1, 1], b[j + 1, 2],
+                )  # fmt: skip
+                if d < best:
+                    best = d
+        dist[p] = best
+        if best >= link_within:
+            continue
+        total = 0.0
+        for i in range(v - 1):
+            for j in range(v - 1):
+                px, py, pz = b[j, 0] - a[i, 0], b[j, 1] - a[i, 1], b[j, 2] - a[i, 2]
+                qx, qy, qz = b[j + 1, 0] - a[i, 0], b[j + 1, 1] - a[i, 1], b[j + 1, 2] - a[i, 2]
+                rx, ry, rz = b[j + 1, 0] - a[i + 1, 0], b[j + 1, 1] - a[i + 1, 1], b[j + 1, 2] - a[i + 1, 2]
+                sx, sy, sz = b[j, 0] - a[i + 1, 0], b[j, 1] - a[i + 1, 1], b[j, 2] - a[i + 1, 2]
+                g, bad = _pair_term(
+                    px, py, pz, math.sqrt(px * px + py * py + pz * pz),
+                    qx, qy, qz, math.sqrt(qx * qx + qy * qy + qz * qz),
+                    rx, ry, rz, math.sqrt(rx * rx + ry * ry + rz * rz),
+                    sx, sy, sz, math.sqrt(sx * sx + sy * sy + sz * sz),
+                )  # fmt: skip
+                if not bad:
+                    total += g
+        link[p] = total
+    return dist, link
+
+
+@nb.njit(cache=True)
+def curves_to_segments_distance(curves, segs):  # pragma: no cover - compiled
+    """Smallest distance between any polyline of ``(S, V, 3)`` ``curves`` and any ``(K, 2, 3)`` segment."""
+    best = np.inf
+    for s in range(curves.shape[0]):
+        c = curves[s]
+        for i in range(c.shape[0] - 1):
+            for t in range(segs.shape[0]):
+                d = _segdist_scalar(
+                    c[i, 0], c[i, 1], c[i, 2], c[i + 1, 0], c[i + 1, 1], c[i + 1, 2],
+                    segs[t, 0, 0], segs[t, 0, 1], segs[t, 0, 2], segs[t, 1, 0], segs[t, 1, 1], segs[t, 1, 2],
+                )  # fmt: skip
+                if d < best:
+                    best = d
+    return best

@@ -6,6 +6,7 @@ import json
 import os
 
 import numpy as np
+from scipy.stats import spearmanr
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
@@ -22,10 +23,14 @@ def test_vision_calibrate_cli_ranks_presets(tmp_path):
     summary = json.loads((tmp_path / "vision_calibration.json").read_text())
     assert summary["n_images"] == len(PRESETS) * 2 * 3
     assert summary["resolution"] == [640, 480]
-    for key in ("spearman_rho", "spearman_rho_unclipped"):
+    # Unclipped, R_c ranks the wigs like R/P. Clipped, it cannot do better than its analytic reading min(4 R/P, 1)
+    # (README, *Vision curliness*), which ties every preset from R/P = 0.25 on.
+    rp = np.array([w.curliness for w in PRESETS.values()])
+    best_clipped = spearmanr(rp, np.minimum(4.0 * rp, 1.0)).statistic
+    for key, bound in (("spearman_rho", best_clipped - 1e-9), ("spearman_rho_unclipped", 0.9)):
         assert set(summary[key]) == {"default", "blond hair", "dim light"}
         for cond, value in summary[key].items():
-            assert value >= 0.9, (key, cond, value)
+            assert value >= bound, (key, cond, value)
     # the clipped R_c never decreases with R/P (ties at the clip allowed) and separates straight from curled
     means = sorted(summary["mean_per_wig"].values(), key=lambda v: v["rp"])
     rc = np.array([v["rc"] for v in means])

@@ -242,3 +242,46 @@ def test_open_curves_reversal_flips_sign_and_swap_is_symmetric(seed):
         assert linking_number(a[::-1], b, closed=False) == pytest.approx(-lk, abs=1e-12)
         assert linking_number(b, a, closed=False) == pytest.approx(lk, abs=1e-12)
         assert average_crossing_number(a, b) >= abs(lk) - 1e-12
+
+
+# ------------------------------------------------------------------------------------------ pass-through detection
+def test_close_pair_proximity_matches_the_reference_functions():
+    from hairbrush_env.topology._kernels import min_segment_distance
+    from hairbrush_env.topology.proximity import close_pair_proximity
+
+    rng = np.random.default_rng(3)
+    base = np.cumsum(rng.normal(0.0, 1e-3, (6, 12, 3)), axis=1)
+    curves = (
+        base
+        + np.array([[0.0, 0.0, 0.0], [2e-3, 0, 0], [0, 2e-3, 0], [0.05, 0, 0], [0, 0.05, 0], [0.051, 0, 0]])[
+            :, None
+        ]
+    )
+    pairs, dist, link = close_pair_proximity(curves, 4e-3)
+    keys = {tuple(p) for p in pairs}
+    assert (0, 1) in keys and (3, 5) in keys and (0, 3) not in keys
+    for (a, b), d, lk in zip(pairs, dist, link, strict=True):
+        assert d == pytest.approx(float(min_segment_distance(curves[a], curves[b])), rel=1e-12)
+        assert lk == pytest.approx(linking_number(curves[a], curves[b], closed=False), abs=1e-12)
+
+
+def test_crossing_detector_sees_one_strand_pass_through_another():
+    from hairbrush_env.topology.proximity import CrossingDetector
+
+    z = np.linspace(-0.02, 0.02, 21)
+    still = np.stack([np.zeros_like(z), np.zeros_like(z), z], axis=1)
+    det = CrossingDetector(gap=5e-3)
+    # A strand winding once round the still one, then the still one sliding sideways out through the middle of one
+    # of its segments in 0.2 mm steps: their link drops by ≈ 1 in the one step where the two centerlines meet.
+    phi = np.linspace(0.0, 2.0 * np.pi, 21)
+    wind = np.stack([2e-3 * np.cos(phi), 2e-3 * np.sin(phi), z], axis=1)
+    out = np.array([np.cos(0.55 * np.pi), np.sin(0.55 * np.pi), 0.0])  # towards a segment's midpoint
+    for k, shift in enumerate(np.arange(0.0, 4.01e-3, 2e-4)):
+        moved = still + shift * out
+        det.update(np.stack([moved, wind]), time=k * 1e-3)
+    assert len(det.crossings) == 1
+    assert det.crossings[0].a == 0 and det.crossings[0].b == 1 and det.crossings[0].jump > 0.8
+    smooth = CrossingDetector(gap=5e-3)
+    for k in range(10):  # the same pair moving apart along z (no passage) never jumps
+        smooth.update(np.stack([still + np.array([0.0, 0.0, 1e-3 * k]), wind]), time=k * 1e-3)
+    assert smooth.crossings == [] and smooth.max_jump < 0.2

@@ -1,0 +1,175 @@
+"""Rods as chains of capsule bodies with three hinges a vertex (``RodSpec.kind = "chain"``, the default).
+
+This is what MuJoCo's removed ``<composite type="cable">`` expanded to, written with :class:`mujoco.MjSpec`: one
+body per edge, nested root to tip, each holding a capsule along its local x axis; the body of edge ``k`` sits at
+``points[k]`` and turns against its parent through three hinges at that vertex,
+
+* a **twist** hinge about the edge tangent (local x) with stiffness ``G J / l̄_k``,
+* two **bending** hinges about the local y and z axes with stiffness ``E I / l̄_k``,
+
+where ``l̄_k = (ℓ_{k−1} + ℓ_k) / 2`` is the Voronoi length of vertex ``k`` (Bergou et al. 2008). At a clamped root
+the spring stands for the curvature of the first half edge, ``l̄_0 = ℓ_0 / 2`` (stiffness ``2 E I / ℓ_0``), the
+body-chain twin of the flex's ghost edge. The rest shape is ``qpos0``: body frames follow the rest centerline with
+parallel-transported (twist-free) frames, so every spring is relaxed in the given curve and curls stay curled.
+Damping is stiffness-proportional (``damping · k``, in seconds like the flex's Rayleigh damping); no armature.
+
+Why three hinges (helical spring of ``rods.helix_study`` geometry, 10 edges per turn, MuJoCo 4.0.1, measured for the
+strand issue, ``docs/rods.md``): a ball joint's one isotropic stiffness makes torsion ``1 + ν`` too stiff (+49 %);
+two bending hinges alone make the coil rigid in torsion (+1200 %); three hinges give +5.4 % at 10 edges per turn
+and +0.6 % at 30, where the DER flex gives +31.8 % and +3.6 %.
+
+Solver: the ``discrete`` integrator with **PGS capped at** :data:`CHAIN_SOLVER_ITERATIONS` iterations
+(:func:`hairbrush_env.rods.configure_rod_options`). Newton is slow on long chains, because a contact's Jacobian
+spans every joint from the root to the contact; PGS needs no factorization of it.
+
+Inextensibility is exact (the bodies are rigid), so there is no edge equality; masses and inertias are those of
+the rigid segments (solid cylinders, centre of mass mid-edge).
+"""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+
+from .flex import FRICTION_TORSION_ROLL
+from .spec import RodSpec, resolve_body
+
+__all__ = ["CHAIN_SOLVER_ITERATIONS", "add_chain_rod", "chain_frames"]
+
+CHAIN_SOLVER_ITERATIONS = 30
+"""PGS iteration cap for chain rods: below it, strands squeezed by the brush sink into each other (an unconverged solve
+is a soft contact); above it, cost grows with little gain (table: ``docs/rods.md``, ``benchmark_sim.py --section
+solver``)."""
+
+# MuJoCo refuses moving bodies whose mass or inertia is below mjMINVAL (1e-15): a 50 µm, 1.7 mm segment has a polar
+# inertia of 2e-17 kg m². Floored, as the flex floors its twist inertias; it only slows the fastest twist mode.
+_MIN_INERTIA = 4.0 * mujoco.mjMINVAL
+_JOINT_AXES = (("twist", (1.0, 0.0, 0.0)), ("bend1", (0.0, 1.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
+
+
+def _min_rotation(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The smallest rotation taking unit vector ``a`` to unit vector ``b`` (discrete parallel transport)."""
+    axis = np.cross(a, b)
+    s = float(np.linalg.norm(axis))
+    if s < 1e-14:
+        return np.eye(3)
+    k = axis / s
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    angle = math.atan2(s, float(a @ b))
+    return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
+
+
+def chain_frames(points: np.ndarray) -> np.ndarray:
+    """Twist-free material frames of a polyline's edges, ``(n_edges, 3, 3)``, columns = (tangent, d1, d2)."""
+    seg = np.diff(np.asarray(points, dtype=float), axis=0)
+    tang = seg / np.linalg.norm(seg, axis=1)[:, None]
+    t0 = tang[0]
+    helper = np.array([0.0, 0.0, 1.0]) if abs(t0[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
+    d1 = np.cross(helper, t0)
+    d1 /= np.linalg.norm(d1)
+    frames = np.empty((len(tang), 3, 3))
+    frames[0] = np.column_stack([t0, d1, np.cross(t0, d1)])
+    for i in range(1, len(tang)):
+        frames[i] = _min_rotation(tang[i - 1], tang[i]) @ frames[i - 1]
+    return frames
+
+
+def _quat(mat: np.ndarray) -> list[float]:
+    q = np.zeros(4)
+    mujoco.mju_mat2Quat(q, np.ascontiguousarray(mat, dtype=float).reshape(9))
+    return [float(v) for v in q]
+
+
+def add_chain_rod(
+    spec: mujoco.MjSpec,
+    rod: RodSpec,
+    *,
+    parent: mujoco.MjsBody | str | None = None,
+) -> mujoco.MjsBody:
+    """Add one rod to ``spec`` as a chain of capsule bodies (see the module docstring).
+
+    Creates (``k`` indexes the edges, ``0 … n−1``) bodies ``<name>_<k>`` at ``points[k]`` with capsule geoms
+    ``<name>_<k>`` and hinges ``<name>_<k>_twist``, ``<name>_<k>_bend1``, ``<name>_<k>_bend2``; a free rod
+    (``clamp=None``) gets a free joint ``<name>_0_free`` at its first vertex instead of the three root hinges.
+
+    Parameters
+    ----------
+    spec : mujoco.MjSpec
+        Any spec; call :func:`hairbrush_env.rods.configure_rod_options` on it as well.
+    rod : RodSpec
+        The rod; ``rod.points`` are expressed in the frame of ``parent``.
+    parent : mujoco.MjsBody or str or None
+        Body holding the clamped root; ``None`` = world. A moving parent receives the rod's reaction.
+
+    Returns
+    -------
+    mujoco.MjsBody
+        The root body ``<name>_0``.
+    """
+    pbody = resolve_body(spec, parent)
+    pts = rod.points
+    lengths = np.linalg.norm(np.diff(pts, axis=0), axis=1)
+    frames = chain_frames(pts)
+    ei, gj = rod.bending_stiffness, rod.twisting_stiffness
+    r = rod.radius
+    friction = [rod.friction, *FRICTION_TORSION_ROLL]
+    clamped = rod.clamp == "start"
+    body = pbody
+    root = None
+    for k, ell in enumerate(lengths):
+        if k == 0:
+            body = body.add_body(name=f"{rod.name}_0", pos=[float(v) for v in pts[0]], quat=_quat(frames[0]))
+            root = body
+        else:
+            rel = frames[k - 1].T @ frames[k]
+            body = body.add_body(
+                name=f"{rod.name}_{k}", pos=[float(lengths[k - 1]), 0.0, 0.0], quat=_quat(rel)
+            )
+        mass = rod.linear_density * float(ell)
+        body.explicitinertial = True
+        body.mass = mass
+        body.ipos = [0.5 * float(ell), 0.0, 0.0]
+        transverse = mass * (3.0 * r**2 + float(ell) ** 2) / 12.0
+        body.inertia = [max(v, _MIN_INERTIA) for v in (0.5 * mass * r**2, transverse, transverse)]
+        if k == 0 and not clamped:
+            body.add_freejoint(name=f"{rod.name}_0_free")
+        else:
+            lbar = 0.5 * float(ell) if k == 0 else 0.5 * float(lengths[k - 1] + ell)
+            for label, axis in _JOINT_AXES:
+                stiffness = (gj if label == "twist" else ei) / lbar
+                body.add_joint(
+                    name=f"{rod.name}_{k}_{label}",
+                    type=mujoco.mjtJoint.mjJNT_HINGE,
+                    axis=list(axis),
+                    stiffness=[stiffness, 0.0, 0.0],
+                    damping=[rod.damping * stiffness, 0.0, 0.0],
+                )
+        geom = body.add_geom(
+            name=f"{rod.name}_{k}",
+            type=mujoco.mjtGeom.mjGEOM_CAPSULE,
+            fromto=[0.0, 0.0, 0.0, float(ell), 0.0, 0.0],
+            size=[r, 0.0, 0.0],
+            contype=rod.contype,
+            conaffinity=rod.conaffinity,
+            condim=rod.condim,
+            friction=friction,
+            margin=rod.margin,
+            rgba=list(rod.rgba),
+            group=rod.group,
+        )
+        geom.mass = 0.0  # the body's explicit inertia is the segment's
+        if rod.contact_solref is not None:
+            geom.solref = [float(v) for v in rod.contact_solref]
+        if rod.contact_solimp is not None:
+            geom.solimp = [float(v) for v in rod.contact_solimp]
+    if not rod.selfcollide and (rod.contype & rod.conaffinity):
+        # Neighbours are parent and child (MuJoCo filters those); exclude the rest of the rod's own segments, as a
+        # flex without self-collision does.
+        n = len(lengths)
+        for a in range(n):
+            for b in range(a + 2, n):
+                spec.add_exclude(bodyname1=f"{rod.name}_{a}", bodyname2=f"{rod.name}_{b}")
+    assert root is not None
+    return root
