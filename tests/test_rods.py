@@ -165,6 +165,25 @@ def test_chain_structure_stiffness_and_mass() -> None:
     assert self_colliding.nexclude == 0
 
 
+@pytest.mark.parametrize("bend", ["bend1", "bend2"])
+def test_chain_bent_90_degrees_at_one_vertex_keeps_three_independent_axes(bend: str) -> None:
+    """A vertex's three hinges are an Euler sequence, singular (two axes aligned, the mass matrix loses rank) when
+    the middle angle is ±90°. That must be the twist, which consecutive segments rarely reach, not a bend: a wisp
+    pressed against the clamp bends 90° at one vertex (with the twist first, a brush stroke through the wavy wig
+    raised MuJoCo's singular-inertia warning and ended as diverged)."""
+    pts = rods.straight_rod_points([0, 0, 0], [0, 0, -1], 0.03, 3)
+    model = rods.build_rod_model([rods.RodSpec(name="k", points=pts, radius=5e-4, young=1e9)])
+    data = mujoco.MjData(model)
+    data.qpos[model.joint(f"k_1_{bend}").qposadr[0]] = 0.5 * math.pi
+    mujoco.mj_kinematics(model, data)
+    axes = np.array([data.xaxis[model.joint(f"k_1_{j}").id] for j in ("bend1", "twist", "bend2")])
+    assert abs(np.linalg.det(axes)) > 0.99
+    data.qpos[model.joint("k_1_twist").qposadr[0]] = 0.5 * math.pi  # the one singular pose left
+    mujoco.mj_kinematics(model, data)
+    axes = np.array([data.xaxis[model.joint(f"k_1_{j}").id] for j in ("bend1", "twist", "bend2")])
+    assert abs(np.linalg.det(axes)) < 1e-9
+
+
 @pytest.mark.parametrize("kind", KINDS)
 def test_vertices_before_stepping_equal_rest_points(kind: str) -> None:
     pts = rods.straight_rod_points([0.01, -0.02, 0.3], [1.0, 0.5, -0.2], 0.15, 12)

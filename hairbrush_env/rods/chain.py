@@ -4,8 +4,8 @@ This is what MuJoCo's removed ``<composite type="cable">`` expanded to, written 
 body per edge, nested root to tip, each holding a capsule along its local x axis; the body of edge ``k`` sits at
 ``points[k]`` and turns against its parent through three hinges at that vertex,
 
-* a **twist** hinge about the edge tangent (local x) with stiffness ``G J / l̄_k``,
 * two **bending** hinges about the local y and z axes with stiffness ``E I / l̄_k``,
+* a **twist** hinge about the edge tangent (local x), between them, with stiffness ``G J / l̄_k``,
 
 where ``l̄_k = (ℓ_{k−1} + ℓ_k) / 2`` is the Voronoi length of vertex ``k`` (Bergou et al. 2008). At a clamped root
 the spring stands for the curvature of the first half edge, ``l̄_0 = ℓ_0 / 2`` (stiffness ``2 E I / ℓ_0``), the
@@ -46,7 +46,11 @@ solver``)."""
 # MuJoCo refuses moving bodies whose mass or inertia is below mjMINVAL (1e-15): a 50 µm, 1.7 mm segment has a polar
 # inertia of 2e-17 kg m². Floored, as the flex floors its twist inertias; it only slows the fastest twist mode.
 _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
-_JOINT_AXES = (("twist", (1.0, 0.0, 0.0)), ("bend1", (0.0, 1.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
+# MuJoCo composes a body's hinges in order, each about its axis in the already-rotated frame, so three hinges are an
+# Euler-angle sequence: singular (two axes aligned, the mass matrix loses rank) when the middle angle reaches ±90°.
+# Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
+# bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
+_JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
 
 
 def _min_rotation(a: np.ndarray, b: np.ndarray) -> np.ndarray:
