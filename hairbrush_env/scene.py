@@ -58,10 +58,11 @@ _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half h
 # starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
 _SCALP_CLEARANCE = 0.009
 _WORKSPACE_Z = (0.55, 0.93)
-# Free-space stepping (BrushingSim._needs_fine_step): the brush's and the hair's bounding boxes at least this far
-# apart [m] — a strand would have to move 0.5 m/s towards the brush to meet it within one 10 ms control period — and
+# Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
+# of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
+# apart [m] — a strand would have to move 0.3 m/s towards the brush to meet it within one 10 ms control period — and
 # no strand point moving more than half a wisp radius per control period (4 cm/s).
-_FREE_CLEARANCE = 0.005
+_FREE_CLEARANCE = 0.003
 _QUIET_MOTION = 4e-4  # arm README: brushing workspace
 _TINE_PREFIX = "arm/brush/tine_"
 TOOL_CONTACT_MARGIN = 1e-3
@@ -189,6 +190,11 @@ def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
     # refsafe would replace the 1 ms hair contacts by ~2·dt ones, which let bristles pull wisps through themselves
     # (hair.CONTACT_SOLREF); the discrete integrator treats the stiff rows implicitly, so they stay stable.
     spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_REFSAFE
+    # Speculative contacts widen each geom pair's contact range by how far the pair closes within the step. Strand
+    # tips whip at up to ~2 m/s when the brush lets go of them; without it, a tip closing faster than the 1 mm
+    # hair–hair contact margin per step reached a neighbour before its contact existed and sank into it to 0.12 of
+    # the sum of radii (curly, full stroke; docs/rods.md). Body-chain hair only: MuJoCo does not apply it to flexes.
+    spec.option.enableflags |= mujoco.mjtEnableBit.mjENBL_SPECULATIVE
     spec.visual.global_.offwidth = max(640, config.width)
     spec.visual.global_.offheight = max(480, config.height)
     spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
@@ -381,6 +387,9 @@ class BrushingSim:
         plate = self.model.geom(_HEAD_PLATE).id
         self.top_z = float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - _SCALP_CLEARANCE
         self._tool_geoms = np.append(self._bristle_geoms, plate)
+        # Surface contact starts at the sum of the two geoms' margins (MuJoCo 4.0.1 adds them), i.e. this far
+        # from a strand's centerline.
+        self._contact_reach = self.wig.strand_radius + hairmod.CONTACT_MARGIN + TOOL_CONTACT_MARGIN
         self._last_curves: np.ndarray | None = None
         self.park = np.array([self.retract_x, 0.0, self.config.free_end_z - 0.02])
 
@@ -517,9 +526,10 @@ class BrushingSim:
     def _needs_fine_step(self, target: np.ndarray) -> bool:
         """Whether the next control period must run at the contact step.
 
-        It must while the brush's bounding box (bristles and head plate, swept towards ``target``) is within
-        :data:`_FREE_CLEARANCE` of the hair's, and while any strand point moved more than :data:`_QUIET_MOTION` in the
-        last control period: at 10 ms, strands swinging after a stroke cross each other like strands under the brush.
+        It must while the brush's bounding box (bristles and head plate, swept towards ``target``) is within the
+        contact reach plus :data:`_FREE_CLEARANCE` of the hair's, and while any strand point moved more than
+        :data:`_QUIET_MOTION` in the last control period: at 10 ms, strands swinging after a stroke cross each other
+        like strands under the brush.
         Everything else — approach, parking, a brush wholly below hair that has come to rest — is free space.
         """
         d = self.data
@@ -533,7 +543,7 @@ class BrushingSim:
         lo = (d.geom_xpos[g] - reach).min(axis=0) - sweep
         hi = (d.geom_xpos[g] + reach).max(axis=0) + sweep
         gap = np.maximum(lo - curves.max(axis=(0, 1)), curves.min(axis=(0, 1)) - hi).max()
-        return bool(gap < _FREE_CLEARANCE)
+        return bool(gap < self._contact_reach + _FREE_CLEARANCE)
 
     def _use_step(self, *, contact: bool) -> None:
         """Step size and solver for the brush in the hair (fine step, the rods' solver) or in free space.
