@@ -27,13 +27,13 @@ calibration (:data:`WISP_COHESION` = 50, ``E_w = 500 MPa`` at the default ``r_w 
 scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double helix (Figs 2.2–2.4), which for the
 ~5000 real double helices under a brush gives ~10 N; a coarse wisp helix (``R/r ≈ 15``, one wisp turn standing for
 many real turns, few contacts per turn) jams far less than a real curl, and with ``κ = 1`` (10 MPa) the curliest full
-stroke read only 0.24 N. ``κ = 50`` was chosen from the measured force table (README "Wigs and scene",
-``scripts/benchmark_sim.py``): curliest full stroke > ``F_T`` = 10 N, straight < 1 N. Forces scale ≈ linearly with
-``κ`` (curly full stroke: 3.0 N at 100 MPa, 8.7 N at 400 MPa with the previous discretization).
+stroke read only 0.24 N. ``κ = 50`` was chosen on the wave-1 flex wig (curliest full stroke > ``F_T`` = 10 N, straight
+< 1 N; forces ≈ linear in ``κ``). On the body-chain wig, whose curls are ~2.7× softer and now within 10 % of spring
+theory, the curliest full stroke still exceeds ``F_T`` and straight reads 2–4 N (``docs/rods.md``, force table).
 
 Discretization and speed: strands are body chains by default (:mod:`hairbrush_env.rods`, ``rod_kind``), with
 :attr:`WigConfig.edges_per_turn` = 8 edges per curl turn, capped at ``max_edges`` = 32 per strand. At 8 edges per turn
-a chain helical spring is within 10 % of ``G d⁴ / (8 D³ N)`` (+8.3 %; the DER flex needs ~30 for that, +53 % at 8),
+a chain helical spring is within 10 % of ``G d⁴ / (8 D³ N)`` (+8.3 %; the DER flex is +53 % at 8 and needs ~20),
 so the curls hold their stiffness, and the link of an entwined pair equals its number of turns. The wave-1 flex wig
 (``rod_kind="flex"``, 5 edges per turn, ≤ 16 edges) is kept for side-by-side benchmarks (``docs/rods.md``).
 The 1 ms contact step that keeps strands from passing through each other sets the cost of a stroke
@@ -121,7 +121,7 @@ WISP_COHESION = 50.0
 
 ``κ = 1``: the ``n`` hairs of a wisp bend independently; ``κ = n``: they are bonded into one solid keratin fibre. 50
 (``E_w = 500 MPa`` at ``r_w = 0.8 mm``) puts a full stroke through the curliest preset above the thesis pain threshold
-and keeps straight hair below 1 N (measured table: README "Wigs and scene", ``scripts/benchmark_sim.py``)."""
+and keeps straight hair well below it (measured table: ``docs/rods.md``, ``scripts/benchmark_sim.py``)."""
 
 
 def wisp_young(

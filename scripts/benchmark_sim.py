@@ -165,27 +165,29 @@ def section_stroke(args: argparse.Namespace) -> None:
 
 def section_solver(args: argparse.Namespace) -> None:
     """Contact solver and iteration cap of the chain wig: stroke CPU vs how far squeezed strands sink in."""
-    cases = [("PGS", 15), ("PGS", 30), ("PGS", 50), ("CG", 20)]
+    cases = [("PGS", 15, True), ("PGS", 30, True), ("PGS", 50, True), ("CG", 20, True), ("PGS", 30, False)]
     wigs = ("curly",) if args.quick else ("curly", "coily")
     print(
         "\n## Contact solver of chain strands: full stroke, b_l = 1, seed 0 (distances every physics step)\n"
     )
     rows = []
     for name in wigs:
-        for solver, iters in cases:
+        for solver, iters, speculative in cases:
             sim = scene.BrushingSim(scene.SceneConfig(wig=name))
             sim.model.opt.iterations = iters
+            if not speculative:
+                sim.model.opt.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_SPECULATIVE)
             sim._contact_solver = getattr(mujoco.mjtSolver, f"mjSOL_{solver}")
             cpu = stroke_stats(sim, 0)["cpu"]
             sim.reset(0)
             mon = PassThroughMonitor(sim)
             res = sim.stroke(1.0, force_threshold=np.inf)
             sim.close()
-            rows.append([name, solver, str(iters), f"{cpu:.2f}", f"{res.max_force:.2f}",
-                         f"{mon.hair_hair_fraction:.2f}", f"{mon.hair_bristle_fraction:.2f}",
+            rows.append([name, solver, str(iters), "yes" if speculative else "no", f"{cpu:.2f}",
+                         f"{res.max_force:.2f}", f"{mon.hair_hair_fraction:.2f}", f"{mon.hair_bristle_fraction:.2f}",
                          str(len(mon.crossings))])  # fmt: skip
-    print(_table(["wig", "solver", "iterations", "CPU s/stroke", "F_max N", "hair–hair / Σr", "hair–bristle / Σr",
-                  "crossings"], rows))  # fmt: skip
+    print(_table(["wig", "solver", "iterations", "speculative", "CPU s/stroke", "F_max N", "hair–hair / Σr",
+                  "hair–bristle / Σr", "crossings"], rows))  # fmt: skip
 
 
 def section_pass_through(args: argparse.Namespace) -> None:

@@ -39,9 +39,9 @@ from .spec import RodSpec, resolve_body
 __all__ = ["CHAIN_SOLVER_ITERATIONS", "add_chain_rod", "chain_frames"]
 
 CHAIN_SOLVER_ITERATIONS = 30
-"""PGS iteration cap for chain rods: below it, strands squeezed by the brush sink into each other (an unconverged solve
-is a soft contact); above it, cost grows with little gain (table: ``docs/rods.md``, ``benchmark_sim.py --section
-solver``)."""
+"""PGS iteration cap for chain rods in contact. An unconverged PGS solve acts as a soft contact, so the cap sets how far
+strands squeezed by the brush sink into each other; 30 leaves a margin at a few per cent of a stroke's cost (table:
+``docs/rods.md``, ``scripts/benchmark_sim.py --section solver``)."""
 
 # MuJoCo refuses moving bodies whose mass or inertia is below mjMINVAL (1e-15): a 50 µm, 1.7 mm segment has a polar
 # inertia of 2e-17 kg m². Floored, as the flex floors its twist inertias; it only slows the fastest twist mode.
