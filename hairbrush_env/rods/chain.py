@@ -13,10 +13,9 @@ body-chain twin of the flex's ghost edge. The rest shape is ``qpos0``: body fram
 parallel-transported (twist-free) frames, so every spring is relaxed in the given curve and curls stay curled.
 Damping is stiffness-proportional (``damping · k``, in seconds like the flex's Rayleigh damping); no armature.
 
-Why three hinges (helical spring of ``rods.helix_study`` geometry, 10 edges per turn, MuJoCo 4.0.1, measured for the
-strand issue, ``docs/rods.md``): a ball joint's one isotropic stiffness makes torsion ``1 + ν`` too stiff (+49 %);
-two bending hinges alone make the coil rigid in torsion (+1200 %); three hinges give +5.4 % at 10 edges per turn
-and +0.6 % at 30, where the DER flex gives +31.8 % and +3.6 %.
+Why three hinges: a ball joint's one isotropic stiffness makes torsion ``1 + ν`` too stiff, and two bending hinges
+alone make a coil rigid in torsion; with three, a helical spring converges to ``G d⁴ / (8 D³ N)`` several times faster
+per edge than the DER flex (``docs/rods.md``). The twist sits between the two bends, see :data:`_JOINT_AXES`.
 
 Solver: the ``discrete`` integrator with **PGS capped at** :data:`CHAIN_SOLVER_ITERATIONS` iterations
 (:func:`hairbrush_env.rods.configure_rod_options`). Newton is slow on long chains, because a contact's Jacobian
