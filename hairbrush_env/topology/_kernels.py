@@ -228,26 +228,32 @@ def min_segment_distance(a, b):  # pragma: no cover - compiled
 
 @nb.njit(cache=True, inline="always")
 def _segment_distance(p0, p1, q0, q1):  # pragma: no cover - compiled
-    # Closest points of two segments (Ericson, Real-Time Collision Detection §5.1.9), degenerate-safe.
-    d1 = p1 - p0
-    d2 = q1 - q0
-    r = p0 - q0
-    a = d1 @ d1
-    e = d2 @ d2
-    f = d2 @ r
+    return _segdist_scalar(p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], q0[0], q0[1], q0[2], q1[0], q1[1], q1[2])
+
+
+@nb.njit(cache=True, inline="always")
+def _segdist_scalar(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz):  # pragma: no cover - compiled
+    # Closest points of segments a→b and c→d (Ericson, Real-Time Collision Detection §5.1.9), degenerate-safe, on
+    # scalars so that hot loops allocate nothing.
+    d1x, d1y, d1z = bx - ax, by - ay, bz - az
+    d2x, d2y, d2z = dx - cx, dy - cy, dz - cz
+    rx, ry, rz = ax - cx, ay - cy, az - cz
+    a = d1x * d1x + d1y * d1y + d1z * d1z
+    e = d2x * d2x + d2y * d2y + d2z * d2z
+    f = d2x * rx + d2y * ry + d2z * rz
     eps = 1e-300
     if a <= eps and e <= eps:
-        return math.sqrt(r @ r)
+        return math.sqrt(rx * rx + ry * ry + rz * rz)
     if a <= eps:
         s = 0.0
         t = min(max(f / e, 0.0), 1.0)
     else:
-        c = d1 @ r
+        c = d1x * rx + d1y * ry + d1z * rz
         if e <= eps:
             t = 0.0
             s = min(max(-c / a, 0.0), 1.0)
         else:
-            bb = d1 @ d2
+            bb = d1x * d2x + d1y * d2y + d1z * d2z
             den = a * e - bb * bb
             s = min(max((bb * f - c * e) / den, 0.0), 1.0) if den > eps else 0.0
             t = (bb * s + f) / e
@@ -257,36 +263,9 @@ def _segment_distance(p0, p1, q0, q1):  # pragma: no cover - compiled
             elif t > 1.0:
                 t = 1.0
                 s = min(max((bb - c) / a, 0.0), 1.0)
-    dx = (p0 + d1 * s) - (q0 + d2 * t)
-    return math.sqrt(dx @ dx)
-
-
-@nb.njit(cache=True, inline="always")
-def _segdist_scalar(ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz):  # pragma: no cover - compiled
-    # _segment_distance on scalars (no temporaries): segments a→b and c→d.
-    d1x, d1y, d1z = bx - ax, by - ay, bz - az
-    d2x, d2y, d2z = dx - cx, dy - cy, dz - cz
-    rx, ry, rz = ax - cx, ay - cy, az - cz
-    a = d1x * d1x + d1y * d1y + d1z * d1z
-    e = d2x * d2x + d2y * d2y + d2z * d2z
-    f = d2x * rx + d2y * ry + d2z * rz
-    c = d1x * rx + d1y * ry + d1z * rz
-    bb = d1x * d2x + d1y * d2y + d1z * d2z
-    eps = 1e-300
-    if a <= eps or e <= eps:  # degenerate segments do not occur in rods; fall back to the endpoint gap
-        return math.sqrt(rx * rx + ry * ry + rz * rz)
-    den = a * e - bb * bb
-    s = min(max((bb * f - c * e) / den, 0.0), 1.0) if den > eps else 0.0
-    t = (bb * s + f) / e
-    if t < 0.0:
-        t = 0.0
-        s = min(max(-c / a, 0.0), 1.0)
-    elif t > 1.0:
-        t = 1.0
-        s = min(max((bb - c) / a, 0.0), 1.0)
-    qx = rx + d1x * s - d2x * t
-    qy = ry + d1y * s - d2y * t
-    qz = rz + d1z * s - d2z * t
+    qx = (ax + d1x * s) - (cx + d2x * t)
+    qy = (ay + d1y * s) - (cy + d2y * t)
+    qz = (az + d1z * s) - (cz + d2z * t)
     return math.sqrt(qx * qx + qy * qy + qz * qz)
 
 
