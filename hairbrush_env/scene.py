@@ -57,13 +57,13 @@ _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half h
 # Gap between the head plate's top and the scalp underside [m]: the stroke starts 2 cm below the roots at most. Closer
 # starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
 _SCALP_CLEARANCE = 0.009
-_WORKSPACE_Z = (0.55, 0.93)
+_WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 # Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
 # apart [m] — a strand would have to move 0.3 m/s towards the brush to meet it within one 10 ms control period — and
 # no strand point moving more than half a wisp radius per control period (4 cm/s).
 _FREE_CLEARANCE = 0.003
-_QUIET_MOTION = 4e-4  # arm README: brushing workspace
+_QUIET_MOTION = 4e-4
 _TINE_PREFIX = "arm/brush/tine_"
 TOOL_CONTACT_MARGIN = 1e-3
 """Contact margin [m] of the bristles and head plate. MuJoCo 4.0.1 adds it to the wisp's own margin
@@ -83,13 +83,11 @@ class SceneConfig:
         Physics step [s] outside the hair (shake, settling, free-space moves). 10 ms: the ``discrete`` integrator is
         implicit and rods are step-independent in statics. Contact with the brush uses ``contact_timestep``.
     contact_timestep : float
-        Physics step [s] while the brush is in the hair (TCP in front of the retract plane: insertion, pull,
-        velocity control). Issue #3 (measured, curly ``b_l = 0.5``): at 10 ms the brush squeezed the stiff wisps 1–2 mm
-        into each other and into the bristles (min centerline distance < 0.01 mm, ``|ΔLk|`` jumps of 2; the
-        contacts held forces of only ~0.1 N at that depth); 5 ms: 0.05 / 0.3 mm; 2.5 ms: distances met but
-        ``|ΔLk|`` 1.0; 1 ms: 1.4 mm hair–hair, 1.9 mm hair–bristle, ``|ΔLk|`` ≤ 0.27. Shake, settling and
-        free-space moves keep ``timestep`` (the cached pre-brushed states do not depend on this setting), so
-        ``model.opt.timestep`` changes at run time.
+        Physics step [s] while the brush is within contact reach of the hair or any strand still moves
+        (``BrushingSim._needs_fine_step``: insertion, pull, retraction through the hair, velocity control). Above
+        1 ms strands cross each other during a stroke (strand speeds reach ~2 m/s; ``docs/rods.md``). Shake,
+        settling and free-space moves keep ``timestep`` (the cached pre-brushed states do not depend on this
+        setting), so ``model.opt.timestep`` changes at run time.
     control_dt : float
         Period of the Cartesian tracking loop [s] (IK + servo set-points).
     width, height : int
