@@ -354,7 +354,8 @@ class BrushingSim:
         self._n_sub = max(1, round(self.config.control_dt / self.config.timestep))
         self._n_sub_contact = max(1, round(self.config.control_dt / self.config.contact_timestep))
         self._dt_contact = self.config.control_dt / self._n_sub_contact
-        self._contact_solver = mujoco.mjtSolver(int(self.model.opt.solver))  # what the rods need in contact
+        # Solver of the contact step: what the rods need (rods.configure_rod_options); settable for benchmarks.
+        self.contact_solver = mujoco.mjtSolver(int(self.model.opt.solver))
         self.hair_bodies = np.concatenate([v.bodies for v in self.entanglement_meter.views])
         # Divergence watch: every dof except the flex rods' twist hinges, whose tiny polar inertia lets them spin
         # at hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
@@ -466,7 +467,7 @@ class BrushingSim:
         """The pre-brushed state for ``seed`` (from the cache, or shaken now and cached)."""
         state = self.cache.get(self.wig, seed, self.model_hash)
         if state is None:
-            self._use_step(contact=False)
+            self.use_step(contact=False)
             hairmod.set_state(self.model, self.data, self._base_state)
             hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
             state = hairmod.get_state(self.model, self.data)
@@ -476,7 +477,7 @@ class BrushingSim:
     def reset(self, seed: int = 0) -> None:
         """Restore the cached pre-brushed wig for ``seed`` with the brush parked beside the hair (time = 0)."""
         state = self.settled_state(seed)
-        self._use_step(contact=False)
+        self.use_step(contact=False)
         hairmod.set_state(self.model, self.data, state)
         self.data.time = 0.0
         self._q = self.controller.arm_qpos(self.data)
@@ -543,8 +544,8 @@ class BrushingSim:
         gap = np.maximum(lo - curves.max(axis=(0, 1)), curves.min(axis=(0, 1)) - hi).max()
         return bool(gap < self._contact_reach + _FREE_CLEARANCE)
 
-    def _use_step(self, *, contact: bool) -> None:
-        """Step size and solver for the brush in the hair (fine step, the rods' solver) or in free space.
+    def use_step(self, *, contact: bool) -> None:
+        """Switch to the contact step (``contact_timestep``, :attr:`contact_solver`) or the free-space step.
 
         Chains are solved with PGS in contact (rods.configure_rod_options), but under the discrete integrator PGS
         integrates actuator gains explicitly: at the 10 ms free-space step the arm's servos (kv = 80, armature 0.2,
@@ -553,7 +554,7 @@ class BrushingSim:
         """
         m = self.model
         m.opt.timestep = self._dt_contact if contact else self.config.timestep
-        m.opt.solver = self._contact_solver if contact else mujoco.mjtSolver.mjSOL_NEWTON
+        m.opt.solver = self.contact_solver if contact else mujoco.mjtSolver.mjSOL_NEWTON
 
     def _tick(self, target: np.ndarray, vel: np.ndarray | None, samples: list | None) -> bool:
         """One control period: track ``target``, step the physics; returns False once diverged."""
@@ -563,7 +564,7 @@ class BrushingSim:
         # Fine physics step while the brush is (or is about to be) in the hair (SceneConfig.contact_timestep).
         in_hair = self._needs_fine_step(target)
         n_sub = self._n_sub_contact if in_hair else self._n_sub
-        self._use_step(contact=in_hair)
+        self.use_step(contact=in_hair)
         self.n_steps += n_sub
         for _ in range(n_sub):
             mujoco.mj_step(self.model, self.data)

@@ -76,11 +76,6 @@ def section_validation(args: argparse.Namespace) -> None:
     )
 
 
-def _contact_step(sim: scene.BrushingSim) -> None:
-    sim.model.opt.timestep = sim.config.contact_timestep
-    sim.model.opt.solver = sim._contact_solver
-
-
 def section_rest(args: argparse.Namespace) -> None:
     """CPU per physics step of the settled scene at the contact step (brush parked)."""
     print("\n## Scene at rest, 1 ms contact step, CPU ms per physics step\n")
@@ -91,7 +86,7 @@ def section_rest(args: argparse.Namespace) -> None:
         for label, wig in wig_cases(base).items():
             sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
             sim.reset(0)
-            _contact_step(sim)
+            sim.use_step(contact=True)
             m, d = sim.model, sim.data
             for _ in range(20):
                 mujoco.mj_step(m, d)
@@ -177,7 +172,7 @@ def section_solver(args: argparse.Namespace) -> None:
             sim.model.opt.iterations = iters
             if not speculative:
                 sim.model.opt.enableflags &= ~int(mujoco.mjtEnableBit.mjENBL_SPECULATIVE)
-            sim._contact_solver = getattr(mujoco.mjtSolver, f"mjSOL_{solver}")
+            sim.contact_solver = getattr(mujoco.mjtSolver, f"mjSOL_{solver}")
             cpu = stroke_stats(sim, 0)["cpu"]
             sim.reset(0)
             mon = PassThroughMonitor(sim)
