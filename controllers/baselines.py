@@ -20,7 +20,10 @@ def _stroke_env(env: Any):
 
 
 class _ConstantStroke:
-    """Every stroke from the same start height (subclasses choose it from the env)."""
+    """Every stroke from the same start height (subclasses choose it from the env), pulled through to the end."""
+
+    #: No force feedback: strokes are not aborted (the thesis's naive robot "significantly exceeding" F_T).
+    abort_force: float | None = None
 
     def __init__(self, env: Any) -> None:
         base = _stroke_env(env)
@@ -58,9 +61,10 @@ class ShortestStrokePolicy(_ConstantStroke):
 
 
 class NaiveThirdsPolicy:
-    """The thesis's naive strategy: b_l = 1/3, 2/3, 1, then full-length strokes (no force feedback)."""
+    """The thesis's naive strategy: b_l = 1/3, 2/3, 1, then full-length strokes (no force feedback, no abort)."""
 
     SCHEDULE = (1 / 3, 2 / 3, 1.0)
+    abort_force: float | None = None
 
     def __init__(self, env: Any) -> None:
         self._env = _stroke_env(env)

@@ -87,6 +87,8 @@ class SigmoidPolicy:
         self._env = base
         self.config = config or ClosedLoopConfig(force_threshold=getattr(base, "force_threshold", 10.0))
         self.curliness_hint = curliness_hint
+        #: Algorithm 1's inner loop stops a stroke at F_T.
+        self.abort_force: float | None = self.config.force_threshold
         self.reset()
 
     def reset(self, seed: int | None = None) -> None:

@@ -20,6 +20,7 @@ COLUMNS = [
     "wig",
     "curliness",
     "policy",
+    "abort_force",
     "episode",
     "seed",
     "max_force",
@@ -34,8 +35,8 @@ COLUMNS = [
 
 
 def read_results(path: str | Path) -> list[dict[str, Any]]:
-    """Rows of a results CSV with numeric columns converted."""
-    return read_csv_rows(
+    """Rows of a results CSV with numeric columns converted (``abort_force``: a float, or None = pulled through)."""
+    rows = read_csv_rows(
         path,
         floats=(
             "curliness",
@@ -48,6 +49,10 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
         ints=("episode", "seed", "strokes", "pain_violations"),
         bools=("diverged",),
     )
+    for row in rows:
+        value = row.get("abort_force", "")
+        row["abort_force"] = float(value) if value not in ("", "None", None) else None
+    return rows
 
 
 #: One env per wig and process, built on first use (building a scene takes seconds; episodes reuse it).

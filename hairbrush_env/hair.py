@@ -69,8 +69,10 @@ import numpy as np
 from . import collision, rods
 from .topology import linking_number
 from .topology._kernels import min_segment_distance
+from .topology.proximity import close_pair_proximity
 
 __all__ = [
+    "CROSS_LINK_THRESHOLD",
     "DEFAULT_WIG",
     "HAIR_GEOM_GROUP",
     "HAIR_RGBA",
@@ -115,6 +117,10 @@ CONTACT_SOLIMP = (0.95, 0.99, 1e-4, 0.5, 2.0)
 # (tests/test_scene.py::test_no_pass_through_*).
 CONTACT_MARGIN = 5e-4
 
+
+CROSS_LINK_THRESHOLD = 0.4
+"""``|Lk|`` from which two strands of different groups count as linked: the thesis's link-interaction threshold
+(Fig. 2.5b), also the bound :func:`wig_layout` keeps every cross-group pair below at rest."""
 
 WISP_COHESION = 50.0
 """Force-scale calibration ``κ = B_w / (n B_h)`` of a wisp (module docstring, *Wisp scaling*).
@@ -600,7 +606,8 @@ def add_wig(
 
 # ------------------------------------------------------------------------------------------ entanglement
 class Entanglement:
-    """Ground-truth entanglement of a compiled wig: ``Σ |open Lk|`` over its entwined pairs.
+    """Ground-truth entanglement of a compiled wig: ``Σ |open Lk|`` over its entwined pairs, plus the link made
+    between any other two strands (``|Lk| ≥`` :data:`CROSS_LINK_THRESHOLD`).
 
     Parameters
     ----------
@@ -647,12 +654,35 @@ class Entanglement:
         c = self.curves(data) if curves is None else curves
         return np.array([linking_number(c[i], c[j], closed=False) for i, j in self.pairs])
 
+    def link_matrix(self, data: mujoco.MjData) -> np.ndarray:
+        """Open-curve Gauss link of every pair of strands, ``(n, n)`` symmetric with a zero diagonal."""
+        curves = self.curve_array(data)
+        n = curves.shape[0]
+        pairs, _, link = close_pair_proximity(curves, np.inf)
+        out = np.zeros((n, n))
+        out[pairs[:, 0], pairs[:, 1]] = link
+        return out + out.T
+
+    def breakdown(self, data: mujoco.MjData) -> tuple[float, float]:
+        """``(entwined, made)``: ``Σ |Lk|`` over the entwined pairs, and over all other strand pairs whose
+        ``|Lk| ≥`` :data:`CROSS_LINK_THRESHOLD` (link a brush or the shaking made between different groups)."""
+        mat = np.abs(self.link_matrix(data))
+        entwined = np.zeros_like(mat, dtype=bool)
+        entwined[self.pairs[:, 0], self.pairs[:, 1]] = True
+        upper = np.triu(np.ones_like(entwined), 1)
+        other = mat[upper & ~entwined]
+        return float(mat[self.pairs[:, 0], self.pairs[:, 1]].sum()), float(
+            other[other >= CROSS_LINK_THRESHOLD].sum()
+        )
+
     def __call__(self, data: mujoco.MjData) -> float:
-        return float(np.abs(self.pair_links(data)).sum())
+        """Entanglement of the wig: ``Σ |Lk|`` over the entwined pairs plus every other pair linked
+        ``≥`` :data:`CROSS_LINK_THRESHOLD` (:meth:`breakdown`), so a brush that tangles strands is seen doing it."""
+        return float(sum(self.breakdown(data)))
 
 
 def entanglement(model: mujoco.MjModel, data: mujoco.MjData, layout: WigLayout) -> float:
-    """One-off ``Σ |open Lk|`` over entwined pairs (build an :class:`Entanglement` once for loops)."""
+    """One-off :class:`Entanglement` reading (build an :class:`Entanglement` once for loops)."""
     return Entanglement(model, layout)(data)
 
 

@@ -43,6 +43,7 @@ class EpisodeLog:
     terminated: bool = False
     truncated: bool = False
     diverged: bool = False
+    abort_force: float | None = None
 
     @property
     def max_force(self) -> float:
@@ -60,6 +61,7 @@ class EpisodeLog:
             "wig": self.wig,
             "curliness": self.curliness_true,
             "policy": self.policy,
+            "abort_force": self.abort_force,
             "max_force": self.max_force,
             "time": self.sim_time,
             "strokes": len(self.steps),
@@ -87,9 +89,12 @@ def run_episode(
 ) -> EpisodeLog:
     """Run one episode to its end (termination or truncation) and return its log.
 
-    ``on_step(log, step, info)`` is called after every env step (recording, progress).
+    ``on_step(log, step, info)`` is called after every env step (recording, progress). A policy with an
+    ``abort_force`` attribute (a force [N], or ``None`` to pull through) has the stroke env abort its strokes there
+    (``reset(options={"abort_force": ...})``), so every policy brushes as it would in the thesis.
     """
-    obs, info = env.reset(seed=seed)
+    options = {"abort_force": policy.abort_force} if hasattr(policy, "abort_force") else None
+    obs, info = env.reset(seed=seed, options=options)
     policy.reset(seed)
     log = EpisodeLog(
         episode=episode,
@@ -98,6 +103,7 @@ def run_episode(
         policy=policy_name,
         curliness_true=float(info["curliness_true"]),
         entanglement_initial=float(info["entanglement_initial"]),
+        abort_force=getattr(getattr(env, "unwrapped", env), "abort_force", None),
     )
     while True:
         t_start = float(info.get("sim_time", 0.0))

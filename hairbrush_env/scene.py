@@ -15,8 +15,10 @@ Stroke (Algorithm 1, inner loop): the brush waits level beside the hair (bristle
 wig) at the start height ``z_bottom + b_l·L_b`` (``b_l`` = normalized brush length measured up from the free ends,
 ``L_b`` = brushable length: from the settled free ends up to the highest start the brush head allows, 2 cm below
 the roots, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed in to the brushing
-depth, then pulled straight down at constant speed until its lowest bristles are below the free ends; the load
-cell is read at 10 Hz and the stroke stops as soon as a reading reaches ``F_T``. The speed is 0.1 m/s by default:
+depth, then pulled straight down at constant speed until the whole brush is below the free ends, wherever it has
+dragged them (or the arm's workspace floor); the load
+cell is read at 10 Hz and the stroke stops as soon as a reading reaches the abort force (``F_T`` by default).
+The speed is 0.1 m/s by default:
 the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
 """
 
@@ -32,6 +34,7 @@ import numpy as np
 from . import hair as hairmod
 from .arm_control import CartesianController, plan_stroke
 from .assets import load_part
+from .brush import TINE_PREFIX, BrushConfig, brush_spec, get_brush
 from .rods import configure_rod_options
 from .sensors import LoadCell, LoadCellConfig
 
@@ -51,8 +54,6 @@ PAIN_THRESHOLD = 10.0
 
 BRUSH_TCP = "arm/brush/brush_tcp"
 HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
-_BRISTLE_HALF = 0.0125  # half bristle length: TCP is at mid-bristle
-_BRISTLE_ROW = 0.008 + 0.0015  # outermost bristle row (±8 mm) + bristle radius
 _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
 # Gap between the head plate's top and the scalp underside [m]: the stroke starts 2 cm below the roots at most. Closer
 # starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
@@ -64,7 +65,7 @@ _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 # no strand point moving more than half a wisp radius per control period (4 cm/s).
 _FREE_CLEARANCE = 0.003
 _QUIET_MOTION = 4e-4
-_TINE_PREFIX = "arm/brush/tine_"
+_TINE_PREFIX = "arm/brush/" + TINE_PREFIX
 TOOL_CONTACT_MARGIN = 1e-3
 """Contact margin [m] of the bristles and head plate. MuJoCo 4.0.1 adds it to the wisp's own margin
 (``hair.CONTACT_MARGIN``), so a hair–tool contact acts from 1.5 mm surface gap: a wisp wrapped round a bristle near the
@@ -79,6 +80,8 @@ class SceneConfig:
     ----------
     wig : str or WigConfig
         Preset name (see :data:`hairbrush_env.hair.PRESETS`) or custom wig.
+    brush : str or BrushConfig
+        Tines of the brush (:data:`hairbrush_env.brush.BRUSH_PRESETS` or a custom :class:`BrushConfig`).
     timestep : float
         Physics step [s] outside the hair (shake, settling, free-space moves). 10 ms: the ``discrete`` integrator is
         implicit and rods are step-independent in statics. Contact with the brush uses ``contact_timestep``.
@@ -111,6 +114,7 @@ class SceneConfig:
     """
 
     wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
+    brush: str | BrushConfig = "paddle"
     timestep: float = 0.01
     contact_timestep: float = 0.001
     control_dt: float = 0.01
@@ -131,6 +135,7 @@ class SceneConfig:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
+        object.__setattr__(self, "brush", get_brush(self.brush))
         for name in (
             "timestep",
             "contact_timestep",
@@ -162,6 +167,11 @@ class SceneConfig:
     def wig_config(self) -> hairmod.WigConfig:
         assert isinstance(self.wig, hairmod.WigConfig)
         return self.wig
+
+    @property
+    def brush_config(self) -> BrushConfig:
+        assert isinstance(self.brush, BrushConfig)
+        return self.brush
 
 
 @dataclass(frozen=True)
@@ -199,7 +209,7 @@ def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
     spec.visual.headlight.diffuse = [0.5, 0.5, 0.5]
 
     arm = load_part("arm")
-    arm.attach(load_part("brush"), site="attachment_site", prefix="brush/")
+    arm.attach(brush_spec(config.brush_config), site="attachment_site", prefix="brush/")
     arm.compile()  # required before nesting (assets/brush/README.md: pending keyframes)
     spec.attach(arm, frame=spec.worldbody.add_frame(), prefix="arm/")
     # Tool geoms get the thin-rod contact parameters of the hair (rods.py: with MuJoCo's default 1 mm impedance
@@ -274,7 +284,7 @@ class StrokeResult:
     max_force : float
         Largest sampled brushing force (0 if no sample).
     aborted : bool
-        A sample reached ``force_threshold`` and the stroke was stopped.
+        A sample reached ``abort_force`` and the stroke was stopped.
     sim_time : float
         Simulated duration of the whole stroke (approach, insertion, pull, retraction) [s].
     diverged : bool
@@ -382,7 +392,8 @@ class BrushingSim:
         lo, hi = self.layout.extent
         self.hair_x_range = (float(self.root_origin[0] + lo[0]), float(self.root_origin[0] + hi[0]))
         self.depth_x = float(self.root_origin[0] + self.config.brush_depth)
-        self.retract_x = self.hair_x_range[0] - 0.015 - _BRISTLE_HALF
+        self.brush = self.config.brush_config
+        self.retract_x = self.hair_x_range[0] - 0.015 - 0.5 * self.brush.tine_length
         plate = self.model.geom(_HEAD_PLATE).id
         self.top_z = float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - _SCALP_CLEARANCE
         self._tool_geoms = np.append(self._bristle_geoms, plate)
@@ -594,7 +605,7 @@ class BrushingSim:
         start_fraction: float,
         *,
         speed: float | None = None,
-        force_threshold: float = PAIN_THRESHOLD,
+        abort_force: float | None = PAIN_THRESHOLD,
         rng: np.random.Generator | None = None,
     ) -> StrokeResult:
         """One stroke of thesis Algorithm 1 (inner loop) from ``b_l = start_fraction``.
@@ -606,8 +617,10 @@ class BrushingSim:
             :attr:`brushable_length` (``b_l = 1``: the highest start the brush head allows below the scalp).
         speed : float, optional
             Pull speed [m/s]; default ``config.stroke_speed``.
-        force_threshold : float
-            ``F_T`` [N]: the stroke stops at the first sample ≥ this.
+        abort_force : float or None
+            The stroke stops at the first load-cell sample ≥ this [N] (Algorithm 1's inner loop at the pain
+            threshold ``F_T``, the default); ``None`` pulls through to the end whatever the force (a naive or human
+            stroke, the thesis's Fig. 3.11).
         rng : np.random.Generator, optional
             Load-cell noise source for this stroke.
 
@@ -620,12 +633,18 @@ class BrushingSim:
         speed = self.config.stroke_speed if speed is None else float(speed)
         if not (math.isfinite(speed) and speed > 0):
             raise ValueError(f"speed must be > 0, got {speed!r}")
+        if abort_force is not None and not (isinstance(abort_force, (int, float)) and abort_force > 0):
+            raise ValueError(f"abort_force must be > 0 or None, got {abort_force!r}")
+        abort_at = math.inf if abort_force is None else float(abort_force)
         if rng is not None:
             self.load_cell.rng = rng
         t0 = float(self.data.time)
         z_start = self.start_height(start_fraction)
         z_start = float(np.clip(z_start, _WORKSPACE_Z[0], _WORKSPACE_Z[1]))
-        z_end = max(self.hair_bottom - _BRISTLE_ROW - 0.01, _WORKSPACE_Z[0])
+        # The pull goes on until the brush has come out below the free ends, wherever the brush has dragged them
+        # (curls straighten under a jammed brush and hang far lower than at rest), down to the workspace floor.
+        z_end = _WORKSPACE_Z[0]
+        clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
         fast = self.config.approach_speed
         empty = (np.zeros(0), np.zeros(0))
 
@@ -664,9 +683,11 @@ class BrushingSim:
             n_before = len(samples)
             if not self._tick(p, vel, samples):
                 break
-            if any(s.brushing_force() >= force_threshold for s in samples[n_before:]):
+            if any(s.brushing_force() >= abort_at for s in samples[n_before:]):
                 aborted = True
                 break
+            if self._last_curves is not None and float(self._last_curves[..., 2].min()) > p[2] + clear:
+                break  # the whole brush is below every strand
         trace = (
             np.array([s.time - t_pull for s in samples]),
             np.array([s.brushing_force() for s in samples]),

@@ -110,7 +110,7 @@ def measure_strokes(
                 sims[wig] = BrushingSim(SceneConfig(wig=wig))
             sim = sims[wig]
             sim.reset(seed)
-            res = sim.stroke(b_l, speed=speed, force_threshold=math.inf, rng=np.random.default_rng(seed))
+            res = sim.stroke(b_l, speed=speed, abort_force=None, rng=np.random.default_rng(seed))
             rows.append(
                 {
                     "wig": wig,

@@ -121,7 +121,7 @@ def stroke_stats(sim: scene.BrushingSim, seed: int) -> dict[str, float]:
     sim.add_step_observer(sample)
     n0 = sim.n_steps
     t0 = time.process_time()
-    res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(seed))
+    res = sim.stroke(1.0, abort_force=None, rng=np.random.default_rng(seed))
     cpu = time.process_time() - t0
     sim.remove_step_observer(sample)
     steps = sim.n_steps - n0
@@ -176,7 +176,7 @@ def section_solver(args: argparse.Namespace) -> None:
             cpu = stroke_stats(sim, 0)["cpu"]
             sim.reset(0)
             mon = PassThroughMonitor(sim)
-            res = sim.stroke(1.0, force_threshold=np.inf)
+            res = sim.stroke(1.0, abort_force=None)
             sim.close()
             rows.append([name, solver, str(iters), "yes" if speculative else "no", f"{cpu:.2f}",
                          f"{res.max_force:.2f}", f"{mon.hair_hair_fraction:.2f}", f"{mon.hair_bristle_fraction:.2f}",
@@ -195,7 +195,7 @@ def section_pass_through(args: argparse.Namespace) -> None:
         for seed in seeds:
             sim.reset(seed)
             mon = PassThroughMonitor(sim)
-            res = sim.stroke(1.0, force_threshold=np.inf, rng=np.random.default_rng(seed))
+            res = sim.stroke(1.0, abort_force=None, rng=np.random.default_rng(seed))
             mon.detach()
             rows.append([name, str(seed), str(mon.steps), f"{res.max_force:.2f}", f"{mon.hair_hair_fraction:.2f}",
                          f"{mon.hair_bristle_fraction:.2f}", str(len(mon.crossings)), f"{mon.max_link_jump:.3f}",
@@ -214,7 +214,7 @@ def section_profile(args: argparse.Namespace) -> None:
     for t in d.timer:
         t.duration, t.number = 0.0, 0
     t_wall, t_cpu = time.perf_counter(), time.process_time()
-    res = sim.stroke(1.0, force_threshold=np.inf)
+    res = sim.stroke(1.0, abort_force=None)
     wall, cpu = time.perf_counter() - t_wall, time.process_time() - t_cpu
     step = d.timer[int(mujoco.mjtTimer.mjTIMER_STEP)]
     rows = [["whole stroke", f"{1e3 * wall:.0f}", "100", str(step.number)]]
@@ -236,7 +236,7 @@ def section_profile(args: argparse.Namespace) -> None:
     sim.reset(0)
     mon = PassThroughMonitor(sim)
     t0 = time.process_time()
-    sim.stroke(1.0, force_threshold=np.inf)
+    sim.stroke(1.0, abort_force=None)
     checked = time.process_time() - t0
     rows.append(["per-step pass-through check (extra, tests/benchmarks only)", f"{1e3 * (checked - cpu):.0f}",
                  f"{100 * (checked - cpu) / cpu:.0f}", str(mon.steps)])  # fmt: skip
@@ -264,7 +264,7 @@ def section_force_table(args: argparse.Namespace) -> None:
             sim.reset(0)
             e0 = sim.entanglement()
             mon = PassThroughMonitor(sim)
-            res = sim.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
+            res = sim.stroke(b, abort_force=None, rng=np.random.default_rng(0))
             mon.detach()
             row.append(
                 f"{res.max_force:.2f} ({e0:.1f}→{sim.entanglement():.1f}) "

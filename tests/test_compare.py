@@ -18,6 +18,7 @@ def _row(wig: str, policy: str, episode: int, max_force: float, curliness: float
         "wig": wig,
         "curliness": curliness,
         "policy": policy,
+        "abort_force": None if policy == "naive" else 10.0,
         "episode": episode,
         "seed": episode,
         "max_force": max_force,
@@ -33,7 +34,7 @@ def _row(wig: str, policy: str, episode: int, max_force: float, curliness: float
 
 
 def test_results_csv_round_trip(tmp_path) -> None:
-    rows = [_row("curly", "naive", 0, 12.5), _row("curly", "naive", 1, 8.0)]
+    rows = [_row("curly", "naive", 0, 12.5), _row("curly", "sigmoid", 1, 8.0)]
     write_csv_rows(tmp_path / "results.csv", rows, compare.COLUMNS)
     back = compare.read_results(tmp_path / "results.csv")
     assert [set(r) for r in back] == [set(compare.COLUMNS)] * 2

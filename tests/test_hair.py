@@ -129,6 +129,35 @@ def test_entanglement_at_rest_equals_ground_truth() -> None:
     assert layout.n_links == pytest.approx(np.abs(layout.pair_link).sum())
 
 
+def test_entanglement_sees_link_made_between_any_two_strands() -> None:
+    """A brush that winds strands of different groups round each other must not look like progress: link between
+    non-entwined strands above the census threshold counts (issue 21)."""
+    wig = hair.PRESETS["curly"].replace(n_strands=8, n_triples=0)
+    model, layout = _wig_model(wig)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    ent = hair.Entanglement(model, layout)
+    mat = ent.link_matrix(data)
+    np.testing.assert_allclose(mat, mat.T)
+    np.testing.assert_allclose(mat[layout.pairs[:, 0], layout.pairs[:, 1]], layout.pair_link, rtol=1e-9)
+    assert ent.breakdown(data) == pytest.approx((layout.n_links, 0.0))  # at rest, groups are unlinked
+    # Wind strand 0 round a strand of another group: read the centerlines through a stand-in of curve_array.
+    curves = ent.curve_array(data)
+    other = next(s for s in range(wig.n_strands) if not any(s in p and 0 in p for p in layout.pairs.tolist()))
+    axis = curves[other].mean(axis=0)
+    t = np.linspace(0.0, 1.0, curves.shape[1])
+    curves[0] = np.column_stack(
+        [
+            axis[0] + 0.004 * np.cos(6 * np.pi * t),
+            axis[1] + 0.004 * np.sin(6 * np.pi * t),
+            curves[other][:, 2],
+        ]
+    )
+    ent.curve_array = lambda _data: curves
+    entwined, made = ent.breakdown(data)
+    assert made > hair.CROSS_LINK_THRESHOLD and ent(data) == pytest.approx(entwined + made)
+
+
 def test_state_cache_roundtrip(tmp_path) -> None:
     wig = hair.PRESETS["wavy"].replace(n_strands=4, n_triples=0)
     model, _ = _wig_model(wig)

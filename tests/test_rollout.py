@@ -18,7 +18,7 @@ from hairbrush_env.rollout import run_episode
 
 
 def test_policies_registered_by_entry_point():
-    assert {"full", "naive", "random", "shortest", "sigmoid"} <= set(available_policies())
+    assert {"full", "human", "naive", "random", "shortest", "sigmoid"} <= set(available_policies())
     with pytest.raises(ValueError, match="unknown policy 'nope'"):
         make_policy("nope", None)
 
@@ -40,6 +40,18 @@ def test_run_episode_full_policy_runs_to_an_end():
     assert all(s.brush_length == pytest.approx(1.0) for s in log.steps)
     assert all(len(s.forces) == len(s.times) >= 1 for s in log.steps)
     assert log.sim_time > 0 and log.total_reward == pytest.approx(sum(s.reward for s in log.steps))
+
+
+def test_rollout_applies_the_abort_each_policy_declares():
+    """Naive and full strokes pull through, the closed loop stops at F_T, a policy that declares nothing gets the
+    env's own abort; the episode log says which abort ran."""
+    env = gym.make("HairBrush-v0", wig=SMALL_CURLY, max_episode_steps=1, abort_force=7.0)
+    declared = {}
+    for name in ("full", "naive", "human", "sigmoid", "random"):
+        policy = make_policy(name, env, **({"curliness_hint": 0.5} if name == "sigmoid" else {}))
+        declared[name] = run_episode(env, policy, episode=0, seed=0, policy_name=name).abort_force
+    env.close()
+    assert declared == {"full": None, "naive": None, "human": None, "sigmoid": 10.0, "random": 7.0}
 
 
 def test_shortest_policy_never_finishes():

@@ -160,7 +160,7 @@ def _full_stroke_checked(sim: scene.BrushingSim, seed: int) -> PassThroughMonito
     sim.add_step_observer(
         lambda s: stretch.append(float(np.abs(_lengths(s.hair_curve_array()) / rest - 1.0).max()))
     )
-    res = sim.stroke(1.0, force_threshold=1e9)
+    res = sim.stroke(1.0, abort_force=None)
     assert not res.diverged and res.max_force > 0.0
     mon.stretch = max(stretch)
     return mon
@@ -210,7 +210,7 @@ def test_entanglement_decreases_after_strokes() -> None:
     s.reset(0)
     e0 = s.entanglement()
     for b in (0.33, 0.67, 1.0):
-        assert not s.stroke(b, force_threshold=np.inf).diverged
+        assert not s.stroke(b, abort_force=None).diverged
     assert s.entanglement() < e0 - 1.0
 
 
@@ -222,7 +222,7 @@ def _force_table(names: list[str], fractions: tuple[float, ...]) -> dict[str, li
         row = []
         for b in fractions:
             s.reset(0)
-            res = s.stroke(b, force_threshold=np.inf, rng=np.random.default_rng(0))
+            res = s.stroke(b, abort_force=None, rng=np.random.default_rng(0))
             assert not res.diverged, (name, b)
             row.append(res.max_force)
         table[name] = row

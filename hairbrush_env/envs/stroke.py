@@ -35,7 +35,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     A robot arm holds a sensorized brush next to a wig hanging from a head mount (thesis chapter 3). Each step is
     one downward brush stroke: the brush moves to the start height, at a fixed depth inside the hair, then pulls
     straight down past the free ends at a fixed speed while the load cell is sampled at 10 Hz; the stroke is
-    aborted as soon as the force reaches the pain threshold F_T (the inner loop of Algorithm 1). Neighbouring hair
+    aborted as soon as the force reaches `abort_force` (by default the pain threshold F_T: the inner loop of
+    Algorithm 1, the robot's safety stop), or pulled through to the end with `abort_force=None` (how the thesis's
+    naive robot and its human brushed, "significantly exceeding the pain threshold", Fig. 3.11). Policies declare
+    the abort they use (`abort_force` attribute, read by `hairbrush rollout` and `compare`). Neighbouring hair
     wisps are entwined in homochiral pairs; strokes comb the link out through the free ends.
 
     ## Action Space
@@ -75,13 +78,14 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     ## Episode End
     - Termination: the wig is detangled (entanglement ≤ `detangled_fraction` × initial) or the finish rule of
-      thesis eq. 3.4 holds: |f_max,i − f_max,i−1| < 0.4 N and b_l ≥ 1, where neither stroke was aborted at F_T
-      (an aborted stroke reads ≈ F_T by construction; without this, two aborted full strokes ended the episode).
+      thesis eq. 3.4 holds: |f_max,i − f_max,i−1| < 0.4 N and b_l ≥ 1, where neither stroke was aborted
+      (an aborted stroke reads ≈ its abort force by construction; otherwise two aborted full strokes would end it).
     - Truncation: `max_episode_steps` strokes (set at registration, 30), or the simulation diverged
       (`info["diverged"] = True`; the episode ends, nothing is raised).
 
     ## Info
-    `max_force`, `pain_violations` (strokes so far whose force reached F_T), `entanglement`,
+    `max_force`, `pain_violations` (strokes so far whose force reached F_T, whatever the abort), `entanglement`
+    (Σ|Lk| over the entwined pairs plus link made between any other two strands, `hair.Entanglement`),
     `entanglement_initial`, `curliness_true` (R/P of the wig), `sim_time` (simulated brushing time so far, s),
     `diverged`, `brush_length`, `aborted`, `wig` (preset name), `force_samples` (the stroke's 10 Hz force samples,
     unpadded) and `force_times` (their episode times, s), `finished_rule` (eq. 3.4), `detangled`, and the reward terms.
@@ -95,7 +99,9 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
     | `render_mode` | `None` | `"rgb_array"` returns the webcam image |
     | `width`, `height` | 160, 120 | image size in pixels (observation and render) |
-    | `force_threshold` | 10.0 | pain threshold F_T [N] (abort level) |
+    | `force_threshold` | 10.0 | pain threshold F_T [N]: pain violations and the pain penalty count samples ≥ it |
+    | `abort_force` | 10.0 | a stroke stops at the first sample ≥ this [N]; `None` pulls through (default: F_T, the
+      closed loop's abort; a user brushing someone wants the robot to stop at pain unless asked otherwise) |
     | `stroke_speed` | 0.1 | brush speed during the pull [m/s] |
     | `min_brush_length` | 0.1 | b_l for action −1 |
     | `trace_length` | auto | samples kept in `force_trace` (a full stroke at 10 Hz) |
@@ -121,6 +127,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         width: int = 160,
         height: int = 120,
         force_threshold: float = PAIN_THRESHOLD_N,
+        abort_force: float | None = PAIN_THRESHOLD_N,
         stroke_speed: float = 0.1,
         min_brush_length: float = 0.1,
         trace_length: int | None = None,
@@ -137,6 +144,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             width=width,
             height=height,
             force_threshold=force_threshold,
+            abort_force=abort_force,
             stroke_speed=stroke_speed,
             min_brush_length=min_brush_length,
             trace_length=trace_length,
@@ -160,6 +168,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         if not (0.0 < min_brush_length < 1.0):
             raise ValueError(f"min_brush_length: must be in (0, 1), got {min_brush_length!r}")
         self.stroke_speed = check_positive("stroke_speed", stroke_speed)
+        self._default_abort = None if abort_force is None else check_positive("abort_force", abort_force)
+        self.abort_force = self._default_abort  # this episode's (reset options may override it)
         self.min_brush_length = float(min_brush_length)
         if trace_length is None:
             trace_length = default_trace_length(self.sim.wig.hanging_length, self.stroke_speed)
@@ -205,6 +215,15 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     # --- gymnasium API -----------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict | None = None):
+        """Start an episode. ``options={"abort_force": F or None}`` sets the abort of this episode only (how a
+        rollout applies the abort its policy declares); without it the constructor's ``abort_force`` holds."""
+        options = dict(options or {})
+        self.abort_force = self._default_abort
+        if "abort_force" in options:
+            value = options.pop("abort_force")
+            self.abort_force = None if value is None else check_positive("abort_force", value)
+        if options:
+            raise ValueError(f"options: unknown keys {sorted(options)}; known: ['abort_force']")
         self._reset_sim(seed)
         self._strokes, self._sim_time = 0, 0.0
         self._prev_fmax = None
@@ -219,7 +238,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         action = check_action(action, self.action_space)
         b_l = self.action_to_brush_length(action)
         result = self.sim.stroke(
-            b_l, speed=self.stroke_speed, force_threshold=self.force_threshold, rng=self.np_random
+            b_l, speed=self.stroke_speed, abort_force=self.abort_force, rng=self.np_random
         )
         forces = np.asarray(result.force_trace[1], dtype=np.float64)
         # episode time of each sample: the load cell's clock restarts at the pull, its first samples are the pull's

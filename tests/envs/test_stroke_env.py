@@ -197,7 +197,7 @@ def test_finish_bonus_outweighs_stalling_for_the_whole_episode():
 def test_aborted_full_strokes_never_finish(small_wig):
     """Eq. 3.4 only counts strokes that went through: two strokes aborted at F_T read ≈ F_T both, and used to end
     the episode (and, with the finish bonus, pay for it) although the brush never got through the hair."""
-    env = gym.make("HairBrush-v0", wig=small_wig, force_threshold=0.05)
+    env = gym.make("HairBrush-v0", wig=small_wig, force_threshold=0.05, abort_force=0.05)
     env.reset(seed=0)
     for _ in range(4):
         _, _, terminated, truncated, info = env.step(np.array([1.0], np.float32))
@@ -205,3 +205,24 @@ def test_aborted_full_strokes_never_finish(small_wig):
         assert not (terminated or truncated)
     assert info["pain_violations"] == 4
     env.close()
+
+
+def test_abort_force_belongs_to_the_episode(small_wig):
+    """``abort_force=None`` pulls through (pain is still counted at F_T); a reset option sets one episode's abort."""
+    env = gym.make("HairBrush-v0", wig=small_wig, force_threshold=0.05, abort_force=None)
+    env.reset(seed=0)
+    _, _, _, _, info = env.step(np.array([1.0], np.float32))
+    assert not info["aborted"] and info["max_force"] >= 0.05 and info["pain_violations"] == 1
+    pulled_through = len(info["force_samples"])
+    env.reset(seed=0, options={"abort_force": 0.05})
+    _, _, _, _, info = env.step(np.array([1.0], np.float32))
+    assert info["aborted"] and len(info["force_samples"]) < pulled_through
+    env.reset(seed=0)  # no option: the constructor's abort again
+    assert env.unwrapped.abort_force is None
+    with pytest.raises(ValueError, match="abort_force"):
+        env.reset(seed=0, options={"abort_force": -1.0})
+    with pytest.raises(ValueError, match="options"):
+        env.reset(seed=0, options={"bogus": 1})
+    env.close()
+    with pytest.raises(ValueError, match="abort_force"):
+        HairBrushEnv(wig=small_wig, abort_force=0.0)

@@ -1,0 +1,197 @@
+"""The brush's tines as a typed config: rows × columns of capsules on the head plate of ``assets/brush``.
+
+``assets/brush/brush.xml`` is the standalone part (load cell, mount, head plate, the default 3 × 8 soft bristles).
+:func:`brush_spec` loads it and, for any :class:`BrushConfig`, replaces its tines with the configured ones and
+sizes the head plate and the tool centre point to them, so scenes, studies and tests use one brush definition.
+``BrushConfig()`` reproduces the XML's tines exactly (``tests/test_brush.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from .assets import load_part
+
+__all__ = ["BRUSH_PRESETS", "PLATE_FRONT_X", "TINE_PREFIX", "BrushConfig", "brush_spec", "get_brush"]
+
+PLATE_FRONT_X = 0.065
+"""x of the head plate's front face in the brush frame [m]: the tines' roots."""
+
+TINE_PREFIX = "tine_"
+"""Name prefix of tine bodies and geoms (``tine_<row>_<column>``)."""
+
+_PLATE_X, _PLATE_HALF_DEPTH = 0.06, 0.005
+# The plate extends this far beyond the outermost tines (brush.xml: 9 mm across the rows, 3 mm above/below them).
+_PLATE_RIM_Y, _PLATE_RIM_Z = 0.009, 0.003
+
+
+@dataclass(frozen=True)
+class BrushConfig:
+    """Tines of the brush (lengths in metres, brush frame: x along the tines, y along a row, z up).
+
+    Parameters
+    ----------
+    rows : int
+        Tine rows, stacked in z ``row_pitch`` apart and centred on the TCP height.
+    row_pitch : float
+        Vertical distance between rows.
+    columns : int
+        Tines per row, ``column_pitch`` apart in y and centred.
+    column_pitch : float
+        Horizontal distance between neighbouring tines of a row (the bristle gap is this minus ``2 tine_radius``).
+    tine_length : float
+        Length of a tine from the plate face to its tip (the TCP sits at mid-tine).
+    tine_radius : float
+        Capsule radius of a tine.
+    hinged : bool
+        Each tine hinges about y at its root (its tip deflects along the pull) with ``stiffness`` and ``damping``;
+        ``False`` = rigid tines, fixed to the head.
+    stiffness : float
+        Hinge stiffness [N m/rad] (brush.xml: a 0.05 N tip load on a 25 mm bristle bends it ≈ 3.6°).
+    damping : float
+        Hinge damping [N m s/rad].
+    density : float
+        Tine material density [kg/m³] (nylon).
+    """
+
+    rows: int = 3
+    row_pitch: float = 0.008
+    columns: int = 8
+    column_pitch: float = 0.006
+    tine_length: float = 0.025
+    tine_radius: float = 0.0015
+    hinged: bool = True
+    stiffness: float = 0.02
+    damping: float = 3e-4
+    density: float = 1150.0
+
+    def __post_init__(self) -> None:
+        for name in ("rows", "columns"):
+            v = getattr(self, name)
+            if not (isinstance(v, int) and not isinstance(v, bool) and 1 <= v <= 64):
+                raise ValueError(f"BrushConfig.{name} must be an integer in [1, 64], got {v!r}")
+        for name in (
+            "row_pitch",
+            "column_pitch",
+            "tine_length",
+            "tine_radius",
+            "stiffness",
+            "damping",
+            "density",
+        ):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise ValueError(f"BrushConfig.{name} must be a finite number > 0, got {v!r}")
+        if self.column_pitch <= 2 * self.tine_radius and self.columns > 1:
+            raise ValueError(
+                f"BrushConfig.column_pitch must exceed the tine diameter {2 * self.tine_radius:g}, "
+                f"got {self.column_pitch!r}"
+            )
+        if self.row_pitch <= 2 * self.tine_radius and self.rows > 1:
+            raise ValueError(
+                f"BrushConfig.row_pitch must exceed the tine diameter {2 * self.tine_radius:g}, got {self.row_pitch!r}"
+            )
+        if self.tine_length <= 2 * self.tine_radius:
+            raise ValueError(
+                f"BrushConfig.tine_length must exceed the tine diameter, got {self.tine_length!r}"
+            )
+
+    @property
+    def row_z(self) -> np.ndarray:
+        """z of each row (brush frame), top row first (brush.xml: row 0 at +8 mm)."""
+        return (0.5 * (self.rows - 1) - np.arange(self.rows)) * self.row_pitch
+
+    @property
+    def column_y(self) -> np.ndarray:
+        """y of each column (brush frame)."""
+        return (np.arange(self.columns) - 0.5 * (self.columns - 1)) * self.column_pitch
+
+    @property
+    def half_height(self) -> float:
+        """Vertical half extent of the tines (outermost row axis + radius) [m]."""
+        return float(self.row_z.max()) + self.tine_radius
+
+    @property
+    def half_width(self) -> float:
+        """Horizontal half extent of the tines across a row [m]."""
+        return float(self.column_y.max()) + self.tine_radius
+
+    @property
+    def plate_half_size(self) -> tuple[float, float, float]:
+        """Half sizes of the head plate box (x, y, z) that carries these tines."""
+        return (
+            _PLATE_HALF_DEPTH,
+            float(self.column_y.max()) + _PLATE_RIM_Y,
+            float(self.row_z.max()) + _PLATE_RIM_Z,
+        )
+
+    @property
+    def tcp_x(self) -> float:
+        """x of the tool centre point (mid-tine) in the brush frame [m]."""
+        return PLATE_FRONT_X + 0.5 * self.tine_length
+
+
+BRUSH_PRESETS: dict[str, BrushConfig] = {
+    "paddle": BrushConfig(),
+}
+"""Named brushes; ``paddle`` is ``assets/brush/brush.xml``'s own 3 × 8 soft bristles."""
+
+
+def get_brush(brush: str | BrushConfig) -> BrushConfig:
+    """Resolve a preset name (or pass a :class:`BrushConfig` through); ValueError lists the valid names."""
+    if isinstance(brush, BrushConfig):
+        return brush
+    if isinstance(brush, str) and brush in BRUSH_PRESETS:
+        return BRUSH_PRESETS[brush]
+    raise ValueError(f"brush: unknown preset {brush!r}; valid names: {', '.join(BRUSH_PRESETS)}")
+
+
+def brush_spec(config: BrushConfig | None = None) -> mujoco.MjSpec:
+    """``assets/brush`` with its tines replaced by ``config``'s (plate, visual head and TCP sized to them)."""
+    config = config if config is not None else BrushConfig()
+    spec = load_part("brush")
+    for body in [b for b in spec.bodies if b.name.startswith(TINE_PREFIX)]:
+        spec.delete(body)
+    for key in list(spec.keys):
+        spec.delete(key)
+    half = list(config.plate_half_size)
+    for name in ("head_plate", "head_visual"):
+        spec.geom(name).size = half
+    spec.site("brush_tcp").pos = [config.tcp_x, 0.0, 0.0]
+    root = spec.body("brush")
+    for i, z in enumerate(config.row_z):
+        for j, y in enumerate(config.column_y):
+            name = f"{TINE_PREFIX}{i}_{j}"
+            parent = root
+            pos = [PLATE_FRONT_X, float(y), float(z)]
+            if config.hinged:
+                parent = root.add_body(name=name, pos=pos)
+                parent.add_joint(
+                    name=name,
+                    type=mujoco.mjtJoint.mjJNT_HINGE,
+                    axis=[0.0, 1.0, 0.0],
+                    stiffness=[config.stiffness, 0.0, 0.0],
+                    damping=[config.damping, 0.0, 0.0],
+                    # Numerical regularization (brush.xml): the bare rotor inertia would need a much smaller step.
+                    armature=1e-6 * (config.tine_length / 0.025) ** 2,
+                    limited=mujoco.mjtLimited.mjLIMITED_TRUE,
+                    range=[-0.35, 0.35],
+                )
+                pos = [0.0, 0.0, 0.0]
+            geom = parent.add_geom(
+                name=name,
+                type=mujoco.mjtGeom.mjGEOM_CAPSULE,
+                size=[config.tine_radius, 0.0, 0.0],
+                fromto=[pos[0], pos[1], pos[2], pos[0] + config.tine_length, pos[1], pos[2]],
+                contype=2,
+                conaffinity=1,
+                group=2,
+                friction=[0.3, 0.005, 0.0001],
+                rgba=[0.95, 0.92, 0.85, 1.0],
+            )
+            geom.density = config.density
+    return spec

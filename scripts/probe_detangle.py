@@ -1,0 +1,51 @@
+"""Exploration probe: repeated pull-through strokes with a custom wig and brush (docs/detangling.md).
+
+    python scripts/probe_detangle.py NAME '{"wig": {"base": "curly", "cohesion": 12.5, ...WigConfig fields},
+        "brush": {...BrushConfig fields}, "scene": {...SceneConfig fields}, "strokes": 6, "seed": 0, "b_l": 1.0}'
+
+Writes runs/probe/NAME.jsonl, one line per stroke (hairbrush_env.studies.repeated_strokes rows).
+"""
+
+import json
+import os
+import sys
+import time
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+from hairbrush_env import hair
+from hairbrush_env.brush import BrushConfig
+from hairbrush_env.scene import BrushingSim, SceneConfig
+from hairbrush_env.studies.repeated_strokes import repeated_strokes
+
+name, cfg = sys.argv[1], json.loads(sys.argv[2])
+w = dict(cfg.get("wig", {}))
+base = hair.PRESETS[w.pop("base", "curly")]
+if "cohesion" in w:
+    w["young"] = hair.wisp_young(w.get("strand_radius", base.strand_radius), cohesion=w.pop("cohesion"))
+wig = base.replace(**w)
+brush = BrushConfig(**cfg.get("brush", {}))
+sc = SceneConfig(wig=wig, brush=brush, **cfg.get("scene", {}))
+t0 = time.process_time()
+sim = BrushingSim(sc)
+print(
+    f"{name}: edges {wig.n_edges} turns {wig.turns:.2f} hang {wig.hanging_length:.3f}",
+    f"spacing {sim.layout.spacing:.4f} extent {sim.layout.extent} Lk {sim.layout.n_links:.2f}",
+    flush=True,
+)
+out = f"runs/probe/{name}.jsonl"
+with open(out, "w") as f:
+
+    def rec(row):
+        row = dict(row, wall=time.time())
+        f.write(json.dumps(row) + "\n")
+        f.flush()
+        print(name, {k: (round(v, 3) if isinstance(v, float) else v) for k, v in row.items()}, flush=True)
+
+    repeated_strokes(
+        sim,
+        seed=cfg.get("seed", 0),
+        brush_length=cfg.get("b_l", 1.0),
+        n_strokes=cfg.get("strokes", 6),
+        on_stroke=rec,
+    )
+print(name, "total CPU", time.process_time() - t0)

@@ -1,0 +1,68 @@
+"""The brush's tines as a config: the default is brush.xml's own brush; custom brushes size plate and TCP."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+
+from hairbrush_env.assets import load_part
+from hairbrush_env.brush import BrushConfig, brush_spec, get_brush
+
+
+def test_default_config_reproduces_the_xml_brush():
+    xml, ours = load_part("brush").compile(), brush_spec().compile()
+    assert (xml.nbody, xml.njnt, xml.ngeom) == (ours.nbody, ours.njnt, ours.ngeom)
+    for field in (
+        "body_pos",
+        "body_mass",
+        "body_inertia",
+        "geom_size",
+        "geom_pos",
+        "geom_friction",
+        "site_pos",
+        "jnt_stiffness",
+        "jnt_range",
+        "dof_damping",
+        "dof_armature",
+    ):
+        np.testing.assert_allclose(getattr(ours, field), getattr(xml, field), atol=1e-12, err_msg=field)
+    assert [xml.geom(i).name for i in range(xml.ngeom)] == [ours.geom(i).name for i in range(ours.ngeom)]
+
+
+def test_custom_brush_sizes_plate_and_tcp_and_rigid_tines_have_no_joints():
+    cfg = BrushConfig(rows=1, columns=9, column_pitch=0.0135, tine_length=0.1, hinged=False)
+    model = brush_spec(cfg).compile()
+    tines = [g for g in range(model.ngeom) if model.geom(g).name.startswith("tine_")]
+    assert len(tines) == 9 and model.njnt == 0
+    np.testing.assert_allclose(model.geom_size[tines, 1], 0.05)  # capsule half length
+    ys = np.sort(model.geom_pos[tines, 1])
+    np.testing.assert_allclose(np.diff(ys), 0.0135)
+    assert model.geom("head_plate").size[1] > ys.max() + cfg.tine_radius
+    assert model.site("brush_tcp").pos[0] == pytest.approx(0.065 + 0.05)
+    assert cfg.half_height == pytest.approx(cfg.tine_radius) and cfg.half_width == pytest.approx(
+        0.054 + 0.0015
+    )
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)  # compiles and runs standalone
+
+
+@pytest.mark.parametrize(
+    "kw, name",
+    [
+        ({"rows": 0}, "rows"),
+        ({"columns": 2.5}, "columns"),
+        ({"tine_length": -1.0}, "tine_length"),
+        ({"column_pitch": 0.002}, "column_pitch"),
+        ({"row_pitch": float("nan")}, "row_pitch"),
+    ],
+)
+def test_bad_brush_configs_name_the_field(kw, name):
+    with pytest.raises(ValueError, match=name):
+        BrushConfig(**kw)
+
+
+def test_presets_resolve_by_name():
+    assert get_brush("paddle") == BrushConfig()
+    with pytest.raises(ValueError, match="valid names"):
+        get_brush("nope")
