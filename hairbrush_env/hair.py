@@ -41,6 +41,11 @@ The 1 ms contact step that keeps strands from passing through each other sets th
 (R = 12 mm) so that they hang 6–8 cm and a stroke from 2 cm below the scalp covers most of them (a wisp turn stands
 for many real curl turns).
 
+Prestress (``WigConfig.rest_splay``): built as coaxial helices with stress-free rest curves, the entwined state is
+the *only* stress-free one (a helix is fixed by its root frame), so combed-apart strands wind themselves back up.
+Turning each strand's stress-free shape about the vertical through its root moves its own helix axis off the group's,
+and entwining becomes a prestressed state held by topology (``docs/detangling.md``).
+
 Pre-brushed state (thesis §3.4: wigs are turned upside down and shaken for 10–15 s)
 -----------------------------------------------------------------------------------
 :func:`shake` moves the head in the hair's frame: shaking the scalp with acceleration ``a(t)`` is *exactly*
@@ -209,6 +214,13 @@ class WigConfig:
     rod_kind : {"chain", "flex"}
         MuJoCo representation of the strands (:data:`hairbrush_env.rods.ROD_KINDS`); ``"flex"`` only for
         benchmarks against the wave-1 wig.
+    rest_splay : float
+        Angle [rad] by which every strand's stress-free shape is turned about the vertical through its root
+        (chains only, :attr:`hairbrush_env.rods.RodSpec.root_rest_turn`). 0: the entwined rest curves are
+        stress-free, so the elastic energy pulls combed-apart strands back into their double helix. ``ψ > 0`` moves
+        each strand's own helix axis off the group's, ``2R sin(ψ/2)`` from where it is built (two strands of a pair
+        then rest ``4R sin(ψ/2)`` apart): entwining becomes a prestressed state held by topology, as for real curls
+        whose follicles do not share an axis.
     """
 
     name: str = "custom"
@@ -234,6 +246,7 @@ class WigConfig:
     shake_frequency: float = 3.0
     rgba: tuple[float, float, float, float] = HAIR_RGBA
     rod_kind: rods.RodKind = "chain"
+    rest_splay: float = 0.0
 
     def __post_init__(self) -> None:
         _require(
@@ -285,6 +298,18 @@ class WigConfig:
         _require(len(self.rgba) == 4, "rgba", "must have 4 entries", self.rgba)
         _require(
             self.rod_kind in rods.ROD_KINDS, "rod_kind", f"must be one of {rods.ROD_KINDS}", self.rod_kind
+        )
+        _require(
+            _finite(self.rest_splay) and abs(self.rest_splay) <= math.pi,
+            "rest_splay",
+            "must be in [-π, π]",
+            self.rest_splay,
+        )
+        _require(
+            self.rest_splay == 0.0 or self.rod_kind == "chain",
+            "rest_splay",
+            "needs rod_kind='chain'",
+            self.rest_splay,
         )
         if self.curliness > 0.0:
             # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).
@@ -598,6 +623,7 @@ def add_wig(
                 margin=CONTACT_MARGIN,
                 group=HAIR_GEOM_GROUP,
                 kind=cfg.rod_kind,
+                root_rest_turn=float(cfg.rest_splay),
             ),
             parent=parent_body,
         )

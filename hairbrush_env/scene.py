@@ -55,9 +55,6 @@ PAIN_THRESHOLD = 10.0
 BRUSH_TCP = "arm/brush/brush_tcp"
 HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
 _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
-# Gap between the head plate's top and the scalp underside [m]: the stroke starts 2 cm below the roots at most. Closer
-# starts bend the stiff wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
-_SCALP_CLEARANCE = 0.009
 _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 # Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
@@ -111,6 +108,10 @@ class SceneConfig:
         Hair–hair contact (off only for benchmarks).
     max_speed : float
         Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
+    scalp_clearance : float
+        Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 9 mm: with the
+        paddle brush (plate half height 11 mm) the stroke starts 2 cm below the roots; closer starts bent the stiff
+        wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
     """
 
     wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
@@ -132,6 +133,7 @@ class SceneConfig:
     )
     hair_hair: bool = True
     max_speed: float = 50.0
+    scalp_clearance: float = 0.009
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
@@ -144,6 +146,7 @@ class SceneConfig:
             "stroke_speed",
             "approach_speed",
             "max_speed",
+            "scalp_clearance",
         ):
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
@@ -395,7 +398,9 @@ class BrushingSim:
         self.brush = self.config.brush_config
         self.retract_x = self.hair_x_range[0] - 0.015 - 0.5 * self.brush.tine_length
         plate = self.model.geom(_HEAD_PLATE).id
-        self.top_z = float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - _SCALP_CLEARANCE
+        self.top_z = (
+            float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - self.config.scalp_clearance
+        )
         self._tool_geoms = np.append(self._bristle_geoms, plate)
         # Surface contact starts at the sum of the two geoms' margins (MuJoCo 4.0.1 adds them), i.e. this far
         # from a strand's centerline.

@@ -55,6 +55,8 @@ def test_unknown_preset_lists_names() -> None:
         ({"young": -5.0}, "young"),
         ({"handedness": 0}, "handedness"),
         ({"curliness": 0.9, "curl_radius": 0.001}, "curl_radius"),
+        ({"rest_splay": 4.0}, "rest_splay"),
+        ({"rest_splay": 0.5, "rod_kind": "flex"}, "rest_splay"),
     ],
 )
 def test_bad_config_names_field(changes: dict, field: str) -> None:

@@ -373,3 +373,26 @@ def test_flex_state_roundtrip_with_plastic_is_bit_identical() -> None:
     np.testing.assert_array_equal(fresh.qpos, reference[1])
     np.testing.assert_array_equal(fresh.plastic, reference[2])
     _assert_healthy(model, fresh)
+
+
+@pytest.mark.parametrize("turn", [math.pi / 2, -math.pi / 3])
+def test_root_rest_turn_makes_the_turned_shape_stress_free(turn):
+    """A chain built in one shape with its root springs referenced to the shape turned about the vertical relaxes,
+    without gravity, exactly into the turned shape (wigs' prestressed entwining, WigConfig.rest_splay)."""
+    t = np.linspace(0.0, 1.0, 25)
+    pts = np.column_stack([0.012 * np.cos(4 * np.pi * t), 0.012 * np.sin(4 * np.pi * t), -0.048 * t])
+    spec = mujoco.MjSpec()
+    rods.configure_rod_options(spec, timestep=1e-3, kind="chain")
+    spec.option.gravity = [0.0, 0.0, 0.0]
+    rods.add_rod(
+        spec, rods.RodSpec(name="r", points=pts, radius=8e-4, young=5e8, damping=0.05, root_rest_turn=turn)
+    )
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    for _ in range(6000):
+        mujoco.mj_step(model, data)
+    c, s = math.cos(turn), math.sin(turn)
+    want = (pts - pts[0]) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T + pts[0]
+    np.testing.assert_allclose(rods.RodView(model, "r").vertices(data), want, atol=1e-9)
+    with pytest.raises(ValueError, match="root_rest_turn"):
+        rods.RodSpec(name="f", points=pts, radius=8e-4, young=5e8, kind="flex", root_rest_turn=0.1)

@@ -31,6 +31,7 @@ import math
 
 import mujoco
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from .flex import FRICTION_TORSION_ROLL
 from .spec import RodSpec, resolve_body
@@ -77,6 +78,18 @@ def chain_frames(points: np.ndarray) -> np.ndarray:
     for i in range(1, len(tang)):
         frames[i] = _min_rotation(tang[i - 1], tang[i]) @ frames[i - 1]
     return frames
+
+
+def _root_rest_angles(frame: np.ndarray, turn: float) -> tuple[float, float, float]:
+    """Root hinge angles (bend1 y, twist x, bend2 z, applied in that order in the body frame, as MuJoCo composes a
+    body's hinges) that turn the root frame ``frame`` by ``turn`` about the parent's z axis."""
+    if turn == 0.0:
+        return (0.0, 0.0, 0.0)
+    c, s = math.cos(turn), math.sin(turn)
+    rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    local = frame.T @ rz @ frame
+    y, x, z = Rotation.from_matrix(local).as_euler("YXZ")
+    return (float(y), float(x), float(z))
 
 
 def _quat(mat: np.ndarray) -> list[float]:
@@ -140,9 +153,13 @@ def add_chain_rod(
             body.add_freejoint(name=f"{rod.name}_0_free")
         else:
             lbar = 0.5 * float(ell) if k == 0 else 0.5 * float(lengths[k - 1] + ell)
-            for label, axis in _JOINT_AXES:
+            rest = _root_rest_angles(frames[0], rod.root_rest_turn) if k == 0 else (0.0, 0.0, 0.0)
+            if spec.compiler.degree:  # springref is read in the spec's angle unit
+                rest = tuple(math.degrees(a) for a in rest)
+            for (label, axis), ref in zip(_JOINT_AXES, rest, strict=True):
                 stiffness = (gj if label == "twist" else ei) / lbar
                 body.add_joint(
+                    springref=float(ref),
                     name=f"{rod.name}_{k}_{label}",
                     type=mujoco.mjtJoint.mjJNT_HINGE,
                     axis=list(axis),

@@ -176,6 +176,10 @@ class RodSpec:
     kind : {"chain", "flex"}
         MuJoCo representation (:data:`ROD_KINDS`); ``"chain"`` is the default (faster, and more accurate per edge
         on curls, ``docs/rods.md``).
+    root_rest_turn : float
+        The rod's stress-free shape is ``points`` turned by this angle [rad] about the parent's z axis through the
+        root (chain, clamped rods only): the rod is built in the ``points`` shape, but its root springs pull it
+        towards the turned one. Wigs use it so that entwined strands are a prestressed, not a stress-free, state.
     """
 
     name: str
@@ -199,6 +203,7 @@ class RodSpec:
     contact_solimp: tuple[float, float, float, float, float] | None = None
     edge_solref: tuple[float, float] = EDGE_SOLREF
     kind: RodKind = "chain"
+    root_rest_turn: float = 0.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
@@ -220,6 +225,8 @@ class RodSpec:
             )
         if self.kind not in ROD_KINDS:
             raise ValueError(f"RodSpec.kind must be one of {ROD_KINDS}, got {self.kind!r}")
+        if self.root_rest_turn != 0.0 and (self.kind != "chain" or self.clamp != "start"):
+            raise ValueError("RodSpec.root_rest_turn needs a clamped chain rod (kind='chain', clamp='start')")
         if self.clamp not in ("start", None):
             raise ValueError(f"RodSpec.clamp must be 'start' or None, got {self.clamp!r}")
         if self.clamp == "start" and pts.shape[0] < 3:
