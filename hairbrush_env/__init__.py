@@ -1,6 +1,6 @@
 """hairbrush_env — robotic hair brushing in MuJoCo, and the rod-physics / curve-topology toolkit behind it.
 
-Science: S. Plumb-Reyes, *Topology, geometry and mechanics of entangled filaments* (PhD thesis, Harvard, 2021).
+Science: T. B. Plumb-Reyes, *Some Topics in Topological Mechanics*, PhD thesis, Harvard University (2021).
 Submodules are imported lazily so that ``import hairbrush_env`` stays cheap (no numba compile, no MuJoCo
 model build) — a training script that only calls ``gymnasium.make`` pays only for what it uses.
 """

@@ -137,8 +137,11 @@ class BrushConfig:
 
 BRUSH_PRESETS: dict[str, BrushConfig] = {
     "paddle": BrushConfig(),
+    "comb": BrushConfig(rows=1, columns=13, column_pitch=0.02, tine_length=0.08, hinged=False),
 }
-"""Named brushes; ``paddle`` is ``assets/brush/brush.xml``'s own 3 × 8 soft bristles."""
+"""Named brushes. ``paddle``: ``assets/brush/brush.xml``'s own 3 × 8 soft 25 mm bristles at 6 mm. ``comb``: one row
+of 13 rigid 80 mm tines at 20 mm (±120 mm), long enough to cross a wig two groups deep (``WigConfig.group_rows = 2``)
+and spaced at half a 40 mm group spacing, so that a tine passes through every group axis (``docs/detangling.md``)."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:

@@ -216,11 +216,14 @@ class WigConfig:
         benchmarks against the wave-1 wig.
     rest_splay : float
         Angle [rad] by which every strand's stress-free shape is turned about the vertical through its root
-        (chains only, :attr:`hairbrush_env.rods.RodSpec.root_rest_turn`). 0: the entwined rest curves are
+        (chains with curls only, :attr:`hairbrush_env.rods.RodSpec.root_rest_turn`). 0: the entwined rest curves are
         stress-free, so the elastic energy pulls combed-apart strands back into their double helix. ``ψ > 0`` moves
         each strand's own helix axis off the group's, ``2R sin(ψ/2)`` from where it is built (two strands of a pair
         then rest ``4R sin(ψ/2)`` apart): entwining becomes a prestressed state held by topology, as for real curls
         whose follicles do not share an axis.
+    group_rows : int or None
+        Rows of groups along the brush's depth axis (x); the columns follow. ``None``: about ``√(n_groups/1.5)``
+        (wider than deep). A curtain one or two groups deep lets every tine of a comb pass through few groups.
     """
 
     name: str = "custom"
@@ -247,6 +250,7 @@ class WigConfig:
     rgba: tuple[float, float, float, float] = HAIR_RGBA
     rod_kind: rods.RodKind = "chain"
     rest_splay: float = 0.0
+    group_rows: int | None = None
 
     def __post_init__(self) -> None:
         _require(
@@ -283,6 +287,17 @@ class WigConfig:
             v = getattr(self, f)
             _require(isinstance(v, (int, np.integer)) and not isinstance(v, bool), f, "must be an integer", v)
         _require(self.n_strands >= 2, "n_strands", "must be >= 2", self.n_strands)
+        _require(
+            self.group_rows is None
+            or (
+                isinstance(self.group_rows, (int, np.integer))
+                and not isinstance(self.group_rows, bool)
+                and self.group_rows >= 1
+            ),
+            "group_rows",
+            "must be an integer >= 1 or None",
+            self.group_rows,
+        )
         _require(self.n_triples >= 0, "n_triples", "must be >= 0", self.n_triples)
         rest = self.n_strands - 3 * self.n_triples
         _require(
@@ -490,10 +505,10 @@ def _polygon_turns(wig: WigConfig) -> float:
     return turns
 
 
-def _grid(n: int) -> tuple[list[tuple[int, int]], int, int]:
+def _grid(n: int, rows: int | None = None) -> tuple[list[tuple[int, int]], int, int]:
     # Rows along x (towards the brush), columns along y (across the brush): wider than deep, so that the
-    # 25 mm bristles reach through the curtain.
-    rows = max(1, round(math.sqrt(n / 1.5)))
+    # bristles reach through the curtain.
+    rows = max(1, round(math.sqrt(n / 1.5))) if rows is None else min(rows, n)
     cols = math.ceil(n / rows)
     return [divmod(k, cols) for k in range(n)], rows, cols
 
@@ -511,7 +526,7 @@ def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
         size = 3 if g < wig.n_triples else 2
         groups.append(tuple(range(k, k + size)))
         k += size
-    cells, rows, cols = _grid(len(groups))
+    cells, rows, cols = _grid(len(groups), wig.group_rows)
     r = wig.strand_radius
     # Straight hair: the two strands of a group hang side by side, one hair diameter apart (R_eff = 1.5 r... 2 r).
     radius = wig.curl_radius if wig.curliness > 0 else 2.0 * r
@@ -623,7 +638,8 @@ def add_wig(
                 margin=CONTACT_MARGIN,
                 group=HAIR_GEOM_GROUP,
                 kind=cfg.rod_kind,
-                root_rest_turn=float(cfg.rest_splay),
+                # straight strands have no curl whose axis could move: turning them would only twist the root
+                root_rest_turn=float(cfg.rest_splay) if cfg.curliness > 0 else 0.0,
             ),
             parent=parent_body,
         )

@@ -101,7 +101,11 @@ class SceneConfig:
     stroke_speed : float
         Default pulling speed [m/s].
     approach_speed : float
-        Speed of free-space and insertion moves [m/s].
+        Speed of insertion into and withdrawal through the hair [m/s].
+    free_speed : float
+        Speed of moves beside or below the hair (up the retract plane to the start height, out from under the
+        hair after a stroke that went through) [m/s]: the hair still swings, so these run at the contact step and
+        their length is CPU time (half of a comb stroke's at 0.15 m/s).
     load_cell : LoadCellConfig
         Instrument (sensor names of the nested brush).
     hair_hair : bool
@@ -126,6 +130,7 @@ class SceneConfig:
     brush_depth: float = 0.0
     stroke_speed: float = 0.1
     approach_speed: float = 0.15
+    free_speed: float = 0.4
     load_cell: LoadCellConfig = field(
         default_factory=lambda: LoadCellConfig(
             force_sensor="arm/brush/brush_force", torque_sensor="arm/brush/brush_torque"
@@ -145,6 +150,7 @@ class SceneConfig:
             "camera_distance",
             "stroke_speed",
             "approach_speed",
+            "free_speed",
             "max_speed",
             "scalp_clearance",
         ):
@@ -651,6 +657,7 @@ class BrushingSim:
         z_end = _WORKSPACE_Z[0]
         clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
         fast = self.config.approach_speed
+        free = self.config.free_speed
         empty = (np.zeros(0), np.zeros(0))
 
         def result(trace: tuple[np.ndarray, np.ndarray], aborted: bool) -> StrokeResult:
@@ -668,7 +675,7 @@ class BrushingSim:
         # Free-space approach: out to the retract plane, to the start height, settle, tare.
         here = self._target
         ok = self._move(np.array([self.retract_x, 0.0, here[2]]), fast)
-        ok = ok and self._move(np.array([self.retract_x, 0.0, z_start]), fast)
+        ok = ok and self._move(np.array([self.retract_x, 0.0, z_start]), free)
         for _ in range(round(0.1 / self.config.control_dt)):
             ok = ok and self._tick(self._target, None, None)
         if not ok:
@@ -682,7 +689,7 @@ class BrushingSim:
         end = np.array([self.depth_x, 0.0, z_end])
         path = plan_stroke(self._target, end, speed, self.config.control_dt)
         vel = np.array([0.0, 0.0, -speed])
-        aborted = False
+        aborted = cleared = False
         t_pull = float(self.data.time)
         for p in path[1:]:
             n_before = len(samples)
@@ -692,13 +699,15 @@ class BrushingSim:
                 aborted = True
                 break
             if self._last_curves is not None and float(self._last_curves[..., 2].min()) > p[2] + clear:
-                break  # the whole brush is below every strand
+                cleared = True  # the whole brush is below every strand
+                break
         trace = (
             np.array([s.time - t_pull for s in samples]),
             np.array([s.brushing_force() for s in samples]),
         )
         if not self.diverged:
-            self._move(np.array([self.retract_x, 0.0, self._target[2]]), fast)
+            # below every strand the way out is free space; an aborted stroke backs out through the hair
+            self._move(np.array([self.retract_x, 0.0, self._target[2]]), free if cleared else fast)
         return result(trace, aborted)
 
     def step_velocity(self, v_z: float, v_depth: float, dt: float = 0.1) -> VelocityStep:

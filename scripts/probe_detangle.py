@@ -18,14 +18,6 @@ from hairbrush_env.scene import BrushingSim, SceneConfig
 from hairbrush_env.studies.repeated_strokes import repeated_strokes
 
 name, cfg = sys.argv[1], json.loads(sys.argv[2])
-if "layout_rows" in cfg:  # exploration only: force the number of group rows along the brush's depth axis
-    _grid = hair._grid
-
-    def forced(n, rows=cfg["layout_rows"]):
-        cols = -(-n // rows)
-        return [divmod(k, cols) for k in range(n)], rows, cols
-
-    hair._grid = forced
 w = dict(cfg.get("wig", {}))
 base = hair.PRESETS[w.pop("base", "curly")]
 if "cohesion" in w:

@@ -56,6 +56,7 @@ def test_unknown_preset_lists_names() -> None:
         ({"handedness": 0}, "handedness"),
         ({"curliness": 0.9, "curl_radius": 0.001}, "curl_radius"),
         ({"rest_splay": 4.0}, "rest_splay"),
+        ({"group_rows": 0}, "group_rows"),
         ({"rest_splay": 0.5, "rod_kind": "flex"}, "rest_splay"),
     ],
 )
@@ -131,6 +132,15 @@ def test_entanglement_at_rest_equals_ground_truth() -> None:
     assert layout.n_links == pytest.approx(np.abs(layout.pair_link).sum())
 
 
+def test_group_rows_sets_the_depth_of_the_curtain() -> None:
+    """One row of groups: every group axis in the plane x = 0, the groups side by side along the brush's rows."""
+    wig = hair.PRESETS["curly"].replace(n_strands=10, n_triples=0, group_rows=1, min_spacing=0.04)
+    lay = hair.wig_layout(wig)
+    np.testing.assert_allclose(lay.axes[:, 0], 0.0)
+    np.testing.assert_allclose(np.diff(np.sort(lay.axes[:, 1])), lay.spacing)
+    assert lay.spacing == pytest.approx(0.04) and lay.max_cross_link < 0.4
+
+
 def test_entanglement_sees_link_made_between_any_two_strands() -> None:
     """A brush that winds strands of different groups round each other must not look like progress: link between
     non-entwined strands above the census threshold counts (issue 21)."""
@@ -185,3 +195,27 @@ def test_shake_acceleration_is_seeded() -> None:
     a0, a1, b = (hair.shake_acceleration(wig, s, t) for s in (0, 0, 1))
     assert np.array_equal(a0, a1) and not np.allclose(a0, b)
     assert np.allclose(a0[0], 0) and np.allclose(a0[-1], 0, atol=1e-9)  # smooth start/end
+
+
+@pytest.mark.parametrize(("splay", "linked"), [(0.0, True), (np.pi / 2, False)])
+def test_stress_free_state_of_an_entwined_pair(splay: float, linked: bool) -> None:
+    """What holds the link (docs/detangling.md): with stress-free entwined rest curves the entwined state is the
+    pair's only stress-free state; with the rest shape splayed, strands free to pass through each other (no contact,
+    no gravity) relax to two unlinked helices, so entwining is a prestressed state that combing can release."""
+    wig = hair.PRESETS["curly"].replace(n_strands=2, n_triples=0, length=0.16, rest_splay=splay)
+    spec = mujoco.MjSpec()
+    rods.configure_rod_options(spec, timestep=1e-3)
+    spec.option.gravity = [0.0, 0.0, 0.0]
+    scalp = spec.worldbody.add_body(name="scalp", pos=[0.0, 0.0, 1.0])
+    layout = hair.add_wig(spec, wig, parent_body=scalp, root_offset=[0.0, 0.0, 0.0], hair_hair=False)
+    model = spec.compile()
+    data = mujoco.MjData(model)
+    for _ in range(4000):
+        mujoco.mj_step(model, data)
+    link = abs(hair.Entanglement(model, layout).pair_links(data)[0])
+    turns = abs(layout.pair_link[0])
+    assert turns > 1.5
+    if linked:
+        assert link == pytest.approx(turns, abs=0.05)
+    else:
+        assert link < 0.25  # measured: 1.60 built in, 0.13 left at ψ = π/2 (0.20 at π/3)

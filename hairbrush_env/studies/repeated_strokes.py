@@ -36,7 +36,8 @@ def repeated_strokes(
 
     Returns one row per stroke (row 0 is the state before brushing, with ``stroke = 0``): ``max_force`` [N],
     ``entwined`` and ``made`` (``Σ |Lk|``), ``entanglement`` (their sum), ``crossings``, ``min_hair_hair`` and
-    ``min_hair_bristle`` (fractions of the sum of radii, over the stroke's physics steps), ``cpu_s``, ``aborted``,
+    ``min_hair_bristle`` (fractions of the sum of radii, over the stroke's physics steps), ``cpu_s`` (process CPU
+    time of the stroke, monitor included), ``sim_s`` (simulated time), ``steps`` (physics steps), ``aborted``,
     ``diverged``. ``on_stroke`` is called with each row as it is made (progress, checkpointing).
     """
     if not (isinstance(n_strokes, int) and n_strokes >= 1):
@@ -45,12 +46,14 @@ def repeated_strokes(
     entwined, made = sim.entanglement_meter.breakdown(sim.data)
     rows = [
         dict(stroke=0, max_force=0.0, entwined=entwined, made=made, entanglement=entwined + made, crossings=0,
-             min_hair_hair=math.nan, min_hair_bristle=math.nan, cpu_s=0.0, aborted=False, diverged=False)
+             min_hair_hair=math.nan, min_hair_bristle=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False,
+             diverged=False)
     ]  # fmt: skip
     if on_stroke is not None:
         on_stroke(rows[0])
     for k in range(1, n_strokes + 1):
         mon = PassThroughMonitor(sim) if monitor else None
+        steps0 = sim.n_steps
         t0 = time.process_time()
         res = sim.stroke(brush_length, abort_force=abort_force)
         cpu = time.process_time() - t0
@@ -67,6 +70,8 @@ def repeated_strokes(
             min_hair_hair=mon.hair_hair_fraction if mon is not None else math.nan,
             min_hair_bristle=mon.hair_bristle_fraction if mon is not None else math.nan,
             cpu_s=cpu,
+            sim_s=res.sim_time,
+            steps=sim.n_steps - steps0,
             aborted=res.aborted,
             diverged=res.diverged,
         )
