@@ -179,12 +179,13 @@ class VideoWriter:
 def plot_rollout(
     episodes: Sequence[Mapping], path: str | os.PathLike[str], *, force_threshold: float = 10.0
 ) -> None:
-    """Force vs episode time (10 Hz samples) and max force per stroke, one colour per episode.
+    """Force vs episode time (10 Hz samples), max force per stroke and entanglement per stroke, one colour per
+    episode (does brushing detangle? stroke 0 is the pre-brushed wig).
 
     ``episodes`` are dicts as produced by :meth:`hairbrush_env.rollout.EpisodeLog.to_dict`.
     """
-    fig, axes = new_figure(2, 1, width=5.5, height=4.0)
-    ax_t, ax_s = axes[0]
+    fig, axes = new_figure(3, 1, width=5.5, height=4.0)
+    ax_t, ax_s, ax_e = axes[0]
     for i, ep in enumerate(episodes):
         color = PALETTE[i % len(PALETTE)]
         t_all, f_all = [], []
@@ -202,9 +203,22 @@ def plot_rollout(
             color=color,
             label=label,
         )
+        ax_e.plot(
+            np.arange(0, len(ep["steps"]) + 1),
+            [ep["entanglement_initial"], *(s["entanglement"] for s in ep["steps"])],
+            "o-",
+            color=color,
+            label=label,
+        )
     for ax in (ax_t, ax_s):
         ax.axhline(force_threshold, color="k", ls="--", lw=1, label="pain threshold F_T")
     ax_t.set(xlabel="brushing time [s]", ylabel="brushing force [N]", title="Load cell (10 Hz)")
     ax_s.set(xlabel="stroke", ylabel="max force [N]", title="Max force per stroke")
+    ax_e.set(
+        xlabel="stroke",
+        ylabel="Σ|Lk|",
+        title="Entanglement after each stroke (entwined + made)",
+        ylim=(0, None),
+    )
     ax_s.legend(fontsize=8)
     save_figure(fig, path)

@@ -106,3 +106,21 @@ def test_wig_lists_spread_over_workers(tmp_path):
         assert sorted(p.name for p in (tmp_path / "monitor").iterdir())[:1] == ["0.monitor.csv"]
     finally:
         venv.close()
+
+
+def test_documented_training_command_runs_with_its_progress_bar(tmp_path):
+    """README's `scripts/train_rl.py` command line, shortened to two strokes, with SB3's progress bar on (its
+    default): a fresh `pip install -e ".[dev,rl]"` must bring what the bar needs (tqdm and rich, issue 22)."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[2] / "scripts" / "train_rl.py"
+    cmd = [sys.executable, str(script), "--env", "HairBrush-v0", "--algo", "sac", "--total-timesteps", "2",
+           "--n-envs", "1", "--vec-env", "dummy", "--seed", "0", "--wig", "straight", "--eval-freq", "1000",
+           "--checkpoint-freq", "1000", "--out", str(tmp_path)]  # fmt: skip
+    done = subprocess.run(
+        cmd, capture_output=True, text=True, timeout=600, env={**os.environ, "MUJOCO_GL": "egl"}
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert (tmp_path / "model.zip").exists() and (tmp_path / "learning_curves.png").exists()
