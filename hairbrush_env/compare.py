@@ -80,6 +80,24 @@ def _close_envs() -> None:
         _ENVS.popitem()[1].close()
 
 
+def _check_names(wigs: Sequence[str], policies: Sequence[str]) -> None:
+    """Unknown wigs and policies are reported before anything is simulated (a grid can run for hours)."""
+    from .hair import get_wig
+    from .policies import available_policies
+
+    for wig in wigs:
+        get_wig(wig)  # ValueError listing the presets
+    known = available_policies()
+    for name in policies:
+        if name.startswith("sb3:"):
+            if "sb3" not in known:
+                raise ValueError("policies: 'sb3:PATH' needs the RL extra (pip install 'hairbrush-env[rl]')")
+        elif name not in known:
+            raise ValueError(
+                f"policies: unknown policy {name!r}; registered: {', '.join(sorted(known))} (or sb3:PATH)"
+            )
+
+
 def run_grid(
     wigs: Sequence[str],
     policies: Sequence[str],
@@ -102,6 +120,7 @@ def run_grid(
 
     if episodes < 1:
         raise ValueError(f"episodes: must be >= 1, got {episodes}")
+    _check_names(wigs, policies)
     if int(workers) != workers or workers < 1:
         raise ValueError(f"workers: must be a positive integer, got {workers!r}")
     out = Path(out)

@@ -113,3 +113,11 @@ def test_naive_finishes_faster_than_sigmoid(tmp_path) -> None:
     by_policy = {r["policy"]: r for r in rows}
     assert not any(r["diverged"] for r in rows)
     assert by_policy["naive"]["time"] < by_policy["sigmoid"]["time"], by_policy
+
+
+def test_unknown_names_fail_before_anything_is_simulated(tmp_path) -> None:
+    with pytest.raises(ValueError, match="unknown policy 'bogus'"):
+        compare.run_grid(["curly"], ["full", "bogus"], episodes=1, seed=0, out=tmp_path, progress=False)
+    with pytest.raises(ValueError, match="valid names"):
+        compare.run_grid(["curlyy"], ["full"], episodes=1, seed=0, out=tmp_path, progress=False)
+    assert not (tmp_path / "results.csv").exists()
