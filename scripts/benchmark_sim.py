@@ -277,10 +277,41 @@ def section_force_table(args: argparse.Namespace) -> None:
     print(_table(["wig", "R/P", "length m", "hanging m"] + [f"b_l={b}" for b in fractions], rows))
 
 
+def section_pull_through(args: argparse.Namespace) -> None:
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and of the detangling design (docs/detangling.md)
+    against the wave-1 flex wig, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
+    seeds = (7,) if args.quick else (7, 11)
+    base = hair.PRESETS[hair.DEFAULT_WIG]
+    comb = base.replace(young=hair.wisp_young(base.strand_radius, cohesion=12.5), min_spacing=0.04, group_rows=2,
+                        rest_splay=0.5 * np.pi)  # fmt: skip
+    cases = [
+        ("flex wave 1, paddle", scene.SceneConfig(wig=wig_cases(base)["flex wave 1"])),
+        ("chain (default), paddle", scene.SceneConfig(wig=base)),
+        ("chain, detangling design, comb", scene.SceneConfig(wig=comb, brush="comb", scalp_clearance=0.005)),
+    ]
+    print(
+        f"\n## Pull-through stroke through '{hair.DEFAULT_WIG}', b_l = 1, no abort, seeds {seeds}, CPU time\n"
+    )
+    rows, flex_cpu = [], None
+    for label, cfg in cases:
+        sim = scene.BrushingSim(cfg)
+        st = [stroke_stats(sim, s) for s in seeds]
+        sim.close()
+        cpu = [s["cpu"] for s in st]
+        flex_cpu = float(np.mean(cpu)) if flex_cpu is None else flex_cpu
+        steps = float(np.mean([s["steps"] for s in st]))
+        rows.append([label, str(cfg.wig_config.n_edges), " / ".join(f"{c:.1f}" for c in cpu),
+                     f"{flex_cpu / float(np.mean(cpu)):.2f}", f"{steps:.0f}", f"{1e3 * np.mean(cpu) / steps:.2f}",
+                     " / ".join(f"{s['f_max']:.1f}" for s in st)])  # fmt: skip
+    print(_table(["case", "edges", "CPU s/stroke per seed", "× less CPU than flex", "physics steps", "CPU ms/step",
+                  "F_max N per seed"], rows))  # fmt: skip
+
+
 SECTIONS: list[Callable[[argparse.Namespace], None]] = [
     section_validation,
     section_rest,
     section_stroke,
+    section_pull_through,
     section_solver,
     section_pass_through,
     section_profile,
