@@ -16,7 +16,7 @@ wig) at the start height ``z_bottom + b_l·L_b`` (``b_l`` = normalized brush len
 ``L_b`` = brushable length: from the settled free ends up to the highest start the brush head allows, 2 cm below
 the roots, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed in to the brushing
 depth, then pulled straight down at constant speed until the whole brush is below the free ends, wherever it has
-dragged them (or the arm's workspace floor); the load
+dragged them (down to ``SceneConfig.pull_floor_z``); the load
 cell is read at 10 Hz and the stroke stops as soon as a reading reaches the abort force (``F_T`` by default).
 The speed is 0.1 m/s by default:
 the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
@@ -56,6 +56,9 @@ BRUSH_TCP = "arm/brush/brush_tcp"
 HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
 _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
 _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
+# The arm holds the brush level below its brushing workspace too (IK residual < 0.01 mm down to 0.35 m), so a pull may
+# go on below 0.55 m (SceneConfig.pull_floor_z).
+_PULL_FLOOR_MIN = 0.35
 # Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
 # apart [m] — a strand would have to move 0.3 m/s towards the brush to meet it within one 10 ms control period — and
@@ -112,6 +115,12 @@ class SceneConfig:
         Hair–hair contact (off only for benchmarks).
     max_speed : float
         Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
+    pull_floor_z : float
+        Lowest TCP height of a pull [m] (≥ 0.35, where the arm still holds the brush level). A jammed brush
+        straightens the curls and drags them far below their rest ends: curly under the paddle brush at b_l = 1 came
+        out only ~17 cm below them (z = 0.44 m). At the default 0.55 m (the arm's brushing workspace floor) such a pull
+        ends with the curls still on the brush, which then withdraws sideways through them; 0.40 pulls through, but
+        the longer drag squeezes strands of the default wig to 0.16 of the sum of radii (``docs/detangling.md``).
     scalp_clearance : float
         Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 9 mm: with the
         paddle brush (plate half height 11 mm) the stroke starts 2 cm below the roots; closer starts bent the stiff
@@ -139,6 +148,7 @@ class SceneConfig:
     hair_hair: bool = True
     max_speed: float = 50.0
     scalp_clearance: float = 0.009
+    pull_floor_z: float = 0.55
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
@@ -169,6 +179,14 @@ class SceneConfig:
                 raise ValueError(f"SceneConfig.{name} must be an int in [16, 4096], got {v!r}")
         if not (math.isfinite(self.free_end_z) and _WORKSPACE_Z[0] < self.free_end_z < _WORKSPACE_Z[1]):
             raise ValueError(f"SceneConfig.free_end_z must be inside {_WORKSPACE_Z}, got {self.free_end_z!r}")
+        if not (
+            isinstance(self.pull_floor_z, (int, float))
+            and math.isfinite(self.pull_floor_z)
+            and _PULL_FLOOR_MIN <= self.pull_floor_z < self.free_end_z
+        ):
+            raise ValueError(
+                f"SceneConfig.pull_floor_z must be in [{_PULL_FLOOR_MIN}, free_end_z), got {self.pull_floor_z!r}"
+            )
         if not (math.isfinite(self.brush_depth) and abs(self.brush_depth) <= 0.03):
             raise ValueError(f"SceneConfig.brush_depth must be within ±0.03 m, got {self.brush_depth!r}")
 
@@ -654,7 +672,7 @@ class BrushingSim:
         z_start = float(np.clip(z_start, _WORKSPACE_Z[0], _WORKSPACE_Z[1]))
         # The pull goes on until the brush has come out below the free ends, wherever the brush has dragged them
         # (curls straighten under a jammed brush and hang far lower than at rest), down to the workspace floor.
-        z_end = _WORKSPACE_Z[0]
+        z_end = self.config.pull_floor_z
         clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
         fast = self.config.approach_speed
         free = self.config.free_speed

@@ -38,6 +38,8 @@ def sim() -> scene.BrushingSim:
         ({"width": 3}, "width"),
         ({"free_end_z": 2.0}, "free_end_z"),
         ({"brush_depth": 0.5}, "brush_depth"),
+        ({"pull_floor_z": 0.2}, "pull_floor_z"),
+        ({"free_speed": 0.0}, "free_speed"),
         ({"stroke_speed": 0.0}, "stroke_speed"),
     ],
 )

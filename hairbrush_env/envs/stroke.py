@@ -21,10 +21,11 @@ from .common import (
 
 
 def default_trace_length(hanging_length: float, stroke_speed: float = 0.1) -> int:
-    """Samples of a full stroke at 10 Hz (the default ``trace_length``): the hanging length plus the clearance below
-    the free ends, with margin for hair that hangs lower after settling. Envs on several wigs that must share one
-    observation space (vectorized training) pass the largest of their wigs' values."""
-    travel = 1.5 * hanging_length + 0.05
+    """Samples of a full stroke at 10 Hz (the default ``trace_length``): the hanging length plus how far a jammed
+    brush drags the curls below their rest ends before it comes out (a pull may go on to 0.22 m below the default
+    free-end height, ``SceneConfig.pull_floor_z``). Envs on several wigs that must share one observation space
+    (vectorized training) pass the largest of their wigs' values."""
+    travel = hanging_length + 0.22
     return math.ceil(travel / stroke_speed * 10.0) + 2
 
 
