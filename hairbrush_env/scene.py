@@ -15,8 +15,8 @@ Stroke (Algorithm 1, inner loop): the brush waits level beside the hair (bristle
 wig) at the start height ``z_bottom + b_l·L_b`` (``b_l`` = normalized brush length measured up from the free ends,
 ``L_b`` = brushable length: from the settled free ends up to the highest start the brush head allows, 2 cm below
 the roots, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed in to the brushing
-depth, then pulled straight down at constant speed until the whole brush is below the free ends, wherever it has
-dragged them (down to ``SceneConfig.pull_floor_z``); the load
+depth, then pulled straight down at constant speed until the whole brush is below the free ends (1 cm below their
+rest height at most, or on until it has cleared them wherever it dragged them, ``SceneConfig.pull_floor_z``); the load
 cell is read at 10 Hz and the stroke stops as soon as a reading reaches the abort force (``F_T`` by default).
 The speed is 0.1 m/s by default:
 the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
@@ -115,12 +115,15 @@ class SceneConfig:
         Hair–hair contact (off only for benchmarks).
     max_speed : float
         Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
-    pull_floor_z : float
-        Lowest TCP height of a pull [m] (≥ 0.35, where the arm still holds the brush level). A jammed brush
-        straightens the curls and drags them far below their rest ends: curly under the paddle brush at b_l = 1 came
-        out only ~17 cm below them (z = 0.44 m). At the default 0.55 m (the arm's brushing workspace floor) such a pull
-        ends with the curls still on the brush, which then withdraws sideways through them; 0.40 pulls through, but
-        the longer drag squeezes strands of the default wig to 0.16 of the sum of radii (``docs/detangling.md``).
+    pull_floor_z : float or None
+        ``None`` (default): a pull ends 1 cm below the rest free ends, or earlier once the whole brush is below every
+        strand. A float [m] (≥ 0.35, where the arm still holds the brush level): the pull goes on until the brush is
+        below every strand, however far it dragged the curls, down to this height. A jammed brush straightens the
+        curls and drags them far below their rest ends (curly under the paddle brush at b_l = 1 came out ~17 cm below
+        them, z = 0.44 m); without a floor such a pull ends with the curls still on the brush, which then withdraws
+        sideways through them. Pulling through squeezed the default wig's strands to 0.16–0.21 of the sum of radii
+        (curly and coily, against ≥ 0.5 with the short pull), so the default keeps the short pull
+        (``docs/detangling.md``).
     scalp_clearance : float
         Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 9 mm: with the
         paddle brush (plate half height 11 mm) the stroke starts 2 cm below the roots; closer starts bent the stiff
@@ -148,7 +151,7 @@ class SceneConfig:
     hair_hair: bool = True
     max_speed: float = 50.0
     scalp_clearance: float = 0.009
-    pull_floor_z: float = 0.55
+    pull_floor_z: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
@@ -179,7 +182,7 @@ class SceneConfig:
                 raise ValueError(f"SceneConfig.{name} must be an int in [16, 4096], got {v!r}")
         if not (math.isfinite(self.free_end_z) and _WORKSPACE_Z[0] < self.free_end_z < _WORKSPACE_Z[1]):
             raise ValueError(f"SceneConfig.free_end_z must be inside {_WORKSPACE_Z}, got {self.free_end_z!r}")
-        if not (
+        if self.pull_floor_z is not None and not (
             isinstance(self.pull_floor_z, (int, float))
             and math.isfinite(self.pull_floor_z)
             and _PULL_FLOOR_MIN <= self.pull_floor_z < self.free_end_z
@@ -670,9 +673,13 @@ class BrushingSim:
         t0 = float(self.data.time)
         z_start = self.start_height(start_fraction)
         z_start = float(np.clip(z_start, _WORKSPACE_Z[0], _WORKSPACE_Z[1]))
-        # The pull goes on until the brush has come out below the free ends, wherever the brush has dragged them
-        # (curls straighten under a jammed brush and hang far lower than at rest), down to the workspace floor.
-        z_end = self.config.pull_floor_z
+        # The pull ends once the whole brush is below every strand. With a pull floor it goes on until then, wherever
+        # the brush has dragged the free ends (curls straighten under a jammed brush and hang far lower than at
+        # rest), down to that floor; without one it ends 1 cm below the rest free ends at the latest.
+        floor = self.config.pull_floor_z
+        z_end = (
+            max(self.hair_bottom - self.brush.half_height - 0.01, _WORKSPACE_Z[0]) if floor is None else floor
+        )
         clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
         fast = self.config.approach_speed
         free = self.config.free_speed

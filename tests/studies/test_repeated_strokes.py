@@ -33,7 +33,7 @@ def test_rows_of_a_short_run():
         repeated_strokes(sim, n_strokes=0)
 
 
-def _small_curtain(splay: float, floor: float = 0.55) -> BrushingSim:
+def _small_curtain(splay: float, floor: float) -> BrushingSim:
     """Two entwined pairs side by side (a curtain one group deep) under a comb whose tines cross each pair's axis."""
     from hairbrush_env.brush import BrushConfig
     from hairbrush_env.hair import wisp_young
