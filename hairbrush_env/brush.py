@@ -24,7 +24,7 @@ PLATE_FRONT_X = 0.065
 TINE_PREFIX = "tine_"
 """Name prefix of tine bodies and geoms (``tine_<row>_<column>``)."""
 
-_PLATE_X, _PLATE_HALF_DEPTH = 0.06, 0.005
+_PLATE_HALF_DEPTH = 0.005
 # The plate extends this far beyond the outermost tines (brush.xml: 9 mm across the rows, 3 mm above/below them).
 _PLATE_RIM_Y, _PLATE_RIM_Z = 0.009, 0.003
 
@@ -166,6 +166,9 @@ def brush_spec(config: BrushConfig | None = None) -> mujoco.MjSpec:
         spec.geom(name).size = half
     spec.site("brush_tcp").pos = [config.tcp_x, 0.0, 0.0]
     root = spec.body("brush")
+    # brush.xml's "bristle" class holds what every tine shares (contact bits, friction, colour, joint axis and range);
+    # the config sets the rest
+    bristle = spec.find_default("bristle")
     for i, z in enumerate(config.row_z):
         for j, y in enumerate(config.column_y):
             name = f"{TINE_PREFIX}{i}_{j}"
@@ -173,28 +176,14 @@ def brush_spec(config: BrushConfig | None = None) -> mujoco.MjSpec:
             pos = [PLATE_FRONT_X, float(y), float(z)]
             if config.hinged:
                 parent = root.add_body(name=name, pos=pos)
-                parent.add_joint(
-                    name=name,
-                    type=mujoco.mjtJoint.mjJNT_HINGE,
-                    axis=[0.0, 1.0, 0.0],
-                    stiffness=[config.stiffness, 0.0, 0.0],
-                    damping=[config.damping, 0.0, 0.0],
-                    # Numerical regularization (brush.xml): the bare rotor inertia would need a much smaller step.
-                    armature=1e-6 * (config.tine_length / 0.025) ** 2,
-                    limited=mujoco.mjtLimited.mjLIMITED_TRUE,
-                    range=[-0.35, 0.35],
-                )
+                joint = parent.add_joint(bristle, name=name)
+                joint.stiffness = [config.stiffness, 0.0, 0.0]
+                joint.damping = [config.damping, 0.0, 0.0]
+                # brush.xml's numerical regularization, scaled with the tine's rotor inertia (∝ length²)
+                joint.armature = bristle.joint.armature * (config.tine_length / 0.025) ** 2
                 pos = [0.0, 0.0, 0.0]
-            geom = parent.add_geom(
-                name=name,
-                type=mujoco.mjtGeom.mjGEOM_CAPSULE,
-                size=[config.tine_radius, 0.0, 0.0],
-                fromto=[pos[0], pos[1], pos[2], pos[0] + config.tine_length, pos[1], pos[2]],
-                contype=2,
-                conaffinity=1,
-                group=2,
-                friction=[0.3, 0.005, 0.0001],
-                rgba=[0.95, 0.92, 0.85, 1.0],
-            )
+            geom = parent.add_geom(bristle, name=name)
+            geom.size = [config.tine_radius, 0.0, 0.0]
+            geom.fromto = [pos[0], pos[1], pos[2], pos[0] + config.tine_length, pos[1], pos[2]]
             geom.density = config.density
     return spec

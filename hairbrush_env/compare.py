@@ -83,19 +83,12 @@ def _close_envs() -> None:
 def _check_names(wigs: Sequence[str], policies: Sequence[str]) -> None:
     """Unknown wigs and policies are reported before anything is simulated (a grid can run for hours)."""
     from .hair import get_wig
-    from .policies import available_policies
+    from .policies import policy_entry_point
 
     for wig in wigs:
         get_wig(wig)  # ValueError listing the presets
-    known = available_policies()
     for name in policies:
-        if name.startswith("sb3:"):
-            if "sb3" not in known:
-                raise ValueError("policies: 'sb3:PATH' needs the RL extra (pip install 'hairbrush-env[rl]')")
-        elif name not in known:
-            raise ValueError(
-                f"policies: unknown policy {name!r}; registered: {', '.join(sorted(known))} (or sb3:PATH)"
-            )
+        policy_entry_point(name)  # ValueError listing the registered policies
 
 
 def run_grid(

@@ -671,6 +671,11 @@ class Entanglement:
         if self._chain_ids is not None:
             tips = np.array([2.0 * model.geom_size[model.body_geomadr[v.tip_body], 1] for v in self.views])
             self._tip_lengths = tips[:, None]
+        # Strand pairs a < b that are not entwined, for the link the brush or the shake made (breakdown).
+        n = len(self.views)
+        entwined = np.zeros((n, n), dtype=bool)
+        entwined[self.pairs[:, 0], self.pairs[:, 1]] = True
+        self._other_pairs = np.nonzero(np.triu(~entwined, 1))
 
     def curves(self, data: mujoco.MjData) -> list[np.ndarray]:
         """Current centerlines of all strands."""
@@ -709,10 +714,7 @@ class Entanglement:
         """``(entwined, made)``: ``Σ |Lk|`` over the entwined pairs, and over all other strand pairs whose
         ``|Lk| ≥`` :data:`CROSS_LINK_THRESHOLD` (link a brush or the shaking made between different groups)."""
         mat = np.abs(self.link_matrix(data))
-        entwined = np.zeros_like(mat, dtype=bool)
-        entwined[self.pairs[:, 0], self.pairs[:, 1]] = True
-        upper = np.triu(np.ones_like(entwined), 1)
-        other = mat[upper & ~entwined]
+        other = mat[self._other_pairs]
         return float(mat[self.pairs[:, 0], self.pairs[:, 1]].sum()), float(
             other[other >= CROSS_LINK_THRESHOLD].sum()
         )

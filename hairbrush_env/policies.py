@@ -37,18 +37,26 @@ def available_policies() -> dict[str, metadata.EntryPoint]:
     return {ep.name: ep for ep in metadata.entry_points(group=ENTRY_POINT_GROUP)}
 
 
-def make_policy(name: str, env: Any, **kwargs: Any) -> Policy:
-    """Instantiate the policy registered as ``name`` for ``env`` (or ``sb3:PATH`` for a saved SB3 model)."""
-    if name.startswith("sb3:"):
-        factory = available_policies().get("sb3")
-        if factory is None:
-            raise ValueError("policy: 'sb3:PATH' needs the RL extra (pip install 'hairbrush-env[rl]')")
-        return factory.load()(env, path=name[4:], **kwargs)
+def policy_entry_point(name: str) -> metadata.EntryPoint:
+    """The entry point behind ``name`` (``sb3:PATH`` → the ``sb3`` loader); ``ValueError`` if none is registered, so
+    callers can check names before they simulate anything."""
     registry = available_policies()
+    if name.startswith("sb3:"):
+        if "sb3" not in registry:
+            raise ValueError("policy: 'sb3:PATH' needs the RL extra (pip install 'hairbrush-env[rl]')")
+        return registry["sb3"]
     if name not in registry:
         known = ", ".join(sorted(registry)) or "none installed"
         raise ValueError(f"policy: unknown policy {name!r}; registered: {known} (or sb3:PATH)")
-    policy = registry[name].load()(env, **kwargs)
+    return registry[name]
+
+
+def make_policy(name: str, env: Any, **kwargs: Any) -> Policy:
+    """Instantiate the policy registered as ``name`` for ``env`` (or ``sb3:PATH`` for a saved SB3 model)."""
+    factory = policy_entry_point(name).load()
+    if name.startswith("sb3:"):
+        return factory(env, path=name[4:], **kwargs)
+    policy = factory(env, **kwargs)
     if not isinstance(policy, Policy):
         raise TypeError(f"policy {name!r}: factory returned {type(policy).__name__} without reset()/act()")
     return policy
