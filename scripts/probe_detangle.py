@@ -33,6 +33,7 @@ print(
     flush=True,
 )
 out = f"runs/probe/{name}.jsonl"
+os.makedirs(os.path.dirname(out), exist_ok=True)
 with open(out, "w") as f:
 
     def rec(row):
