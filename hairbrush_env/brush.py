@@ -136,12 +136,15 @@ class BrushConfig:
 
 
 BRUSH_PRESETS: dict[str, BrushConfig] = {
+    "comb": BrushConfig(rows=1, columns=23, column_pitch=0.02, tine_length=0.06, hinged=False),
     "paddle": BrushConfig(),
-    "comb": BrushConfig(rows=1, columns=13, column_pitch=0.02, tine_length=0.08, hinged=False),
 }
-"""Named brushes. ``paddle``: ``assets/brush/brush.xml``'s own 3 × 8 soft 25 mm bristles at 6 mm. ``comb``: one row
-of 13 rigid 80 mm tines at 20 mm (±120 mm), long enough to cross a wig two groups deep (``WigConfig.group_rows = 2``)
-and spaced at half a 40 mm group spacing, so that a tine passes through every group axis (``docs/detangling.md``)."""
+"""Named brushes. ``comb`` (the scenes' default): one row of 23 rigid 60 mm tines at 20 mm (±220 mm), spanning the
+default one-group-deep curtain (``WigConfig.group_rows = 1``, 40 mm group spacing): every group axis has a tine
+through it and a tine between neighbouring groups, so each stroke parts the strands of every pair; 60 mm crosses a
+curtain one group deep with room to spare. ``paddle``: ``assets/brush/brush.xml``'s own 3 × 8 soft 25 mm bristles
+at 6 mm, kept for the wave-1 benchmarks; it pushes whole groups aside and winds neighbouring groups together
+(``docs/detangling.md``)."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:

@@ -23,13 +23,24 @@ Real hair (``r_h ≈ 40 µm``, ``E_h ≈ 4 GPa``) is far too thin and stiff-per-
 of radius ``r_w`` stands for ``n = (r_w / r_h)²`` hairs (same mass per length with the keratin density). Its bending
 stiffness is ``B_w = κ · n · B_h`` (:func:`wisp_young`: ``E_w = κ E_h (r_h / r_w)²``), where the *cohesion* ``κ``
 runs from 1 (``n`` uncoupled hairs) to ``n`` (hairs bonded into one solid fibre). ``κ`` is the force-scale
-calibration (:data:`WISP_COHESION` = 50, ``E_w = 500 MPa`` at the default ``r_w = 0.8 mm`` = 400 hairs): chapter 2
-scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double helix (Figs 2.2–2.4), which for the
-~5000 real double helices under a brush gives ~10 N; a coarse wisp helix (``R/r ≈ 15``, one wisp turn standing for
-many real turns, few contacts per turn) jams far less than a real curl, and with ``κ = 1`` (10 MPa) the curliest full
-stroke read only 0.24 N. ``κ = 50`` was chosen on the wave-1 flex wig (curliest full stroke > ``F_T`` = 10 N, straight
-< 1 N; forces ≈ linear in ``κ``). On the body-chain wig, whose curls are ~2.7× softer and now within 10 % of spring
-theory, the curliest full stroke still exceeds ``F_T`` and straight reads 2–4 N (``docs/rods.md``, force table).
+calibration (:data:`WISP_COHESION` = 12.5, ``E_w = 125 MPa`` at the default ``r_w = 0.8 mm`` = 400 hairs): chapter 2
+scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double helix (Figs 2.2–2.4). A coarse wisp helix
+(``R/r = 15``, one wisp turn standing for many real turns, few contacts per turn) jams far less than a real curl, so
+``κ ≫ 1``; forces grow about linearly in ``κ``. The wave-1 wig used ``κ = 50`` (:data:`WAVE1_COHESION`) under a soft
+paddle brush that pushed whole groups aside. Under the comb, whose tines split every pair, ``κ = 12.5`` puts the
+first full stroke through the curled presets at 5–9 N, below the thesis's pain threshold ``F_T = 10 N``. Stiffer
+wisps read more (``κ = 16``: 7–11 N; 20: 8–10.5 N) but comb out less (curly, seed 0: 0.46 of the entanglement left
+after six strokes at ``κ = 16``) and are squeezed into each other more (``docs/detangling.md``).
+
+Brush and wig scale, chosen together (``docs/detangling.md``): the link of an entwined pair leaves through the free
+ends only where a tine passes *between* its strands (chapter 2). The groups stand in a curtain one group deep
+(``group_rows = 1``) at 40 mm spacing, and the default comb (:data:`hairbrush_env.brush.BRUSH_PRESETS`) has rigid
+tines at half that spacing: one through every group axis, one between neighbouring groups, each 60 mm long (the
+curtain's depth plus the splayed curls). The tine gap (20 mm − 2 × 1 mm) is ~10 wisp diameters and 0.8 of a curl
+diameter, so a tine parts a pair without pinching a strand between two tines (a wisp needs
+``2 r_w + 2 r_t + Σ margins ≈ 5 mm``), while every curl (diameter ``2R = 24–28 mm``) is wider than the gap and is
+caught. The spacing is twice the diameter of the curl so that splayed strands (axes ``√2 R`` off the group's) of
+neighbouring groups do not interleave.
 
 Discretization and speed: strands are body chains by default (:mod:`hairbrush_env.rods`, ``rod_kind``), with
 :attr:`WigConfig.edges_per_turn` = 8 edges per curl turn, capped at ``max_edges`` = 32 per strand. At 8 edges per turn
@@ -92,6 +103,7 @@ __all__ = [
     "get_wig",
     "min_distance_matrix",
     "shake",
+    "wave1_wig",
     "wig_layout",
     "wisp_young",
 ]
@@ -127,12 +139,12 @@ CROSS_LINK_THRESHOLD = 0.4
 """``|Lk|`` from which two strands of different groups count as linked: the thesis's link-interaction threshold
 (Fig. 2.5b), also the bound :func:`wig_layout` keeps every cross-group pair below at rest."""
 
-WISP_COHESION = 50.0
+WISP_COHESION = 12.5
 """Force-scale calibration ``κ = B_w / (n B_h)`` of a wisp (module docstring, *Wisp scaling*).
 
-``κ = 1``: the ``n`` hairs of a wisp bend independently; ``κ = n``: they are bonded into one solid keratin fibre. 50
-(``E_w = 500 MPa`` at ``r_w = 0.8 mm``) puts a full stroke through the curliest preset above the thesis pain threshold
-and keeps straight hair well below it (measured table: ``docs/rods.md``, ``scripts/benchmark_sim.py``)."""
+``κ = 1``: the ``n`` hairs of a wisp bend independently; ``κ = n``: they are bonded into one solid keratin fibre. 12.5
+(``E_w = 125 MPa`` at ``r_w = 0.8 mm``): the comb's first full stroke through the curled presets reads 5–9 N and
+repeated strokes comb most of the link out; stiffer wisps read more but comb out less (``docs/detangling.md``)."""
 
 
 def wisp_young(
@@ -200,7 +212,9 @@ class WigConfig:
     root_gap : float
         Minimum surface gap between strands of different groups in the rest layout.
     min_spacing : float
-        Minimum lattice spacing of group axes (sets the volume of straight wigs).
+        Minimum lattice spacing of group axes. 40 mm (default): twice the comb's 20 mm tine pitch, so that a tine
+        passes through every group axis and one between neighbouring groups, and wide enough that splayed curls of
+        neighbouring groups do not interleave (``docs/detangling.md``).
     shake_seconds : float
         Simulated shaking time of the pre-brushed preparation (thesis: 10–15 s by hand; see :func:`shake`).
     settle_seconds : float
@@ -220,10 +234,13 @@ class WigConfig:
         stress-free, so the elastic energy pulls combed-apart strands back into their double helix. ``ψ > 0`` moves
         each strand's own helix axis off the group's, ``2R sin(ψ/2)`` from where it is built (two strands of a pair
         then rest ``4R sin(ψ/2)`` apart): entwining becomes a prestressed state held by topology, as for real curls
-        whose follicles do not share an axis.
+        whose follicles do not share an axis. Default ``π/2``: the splay with which repeated strokes remove the link
+        and force falls stroke by stroke (``ψ = 0`` keeps re-winding, ``π/3`` stalls; ``docs/detangling.md``).
+        Straight wigs ignore it; flex wigs need ``0``.
     group_rows : int or None
         Rows of groups along the brush's depth axis (x); the columns follow. ``None``: about ``√(n_groups/1.5)``
-        (wider than deep). A curtain one or two groups deep lets every tine of a comb pass through few groups.
+        (wider than deep). Default 1: a curtain one group deep, in which no tine collects strands of several groups
+        along its length (deeper wigs let the brush wind neighbouring groups together).
     """
 
     name: str = "custom"
@@ -242,15 +259,15 @@ class WigConfig:
     max_edges: int = 32
     handedness: int = 1
     root_gap: float = 1.5e-3
-    min_spacing: float = 6e-3
+    min_spacing: float = 0.04
     shake_seconds: float = 1.0
     settle_seconds: float = 1.0
     shake_accel: float = 6.0
     shake_frequency: float = 3.0
     rgba: tuple[float, float, float, float] = HAIR_RGBA
     rod_kind: rods.RodKind = "chain"
-    rest_splay: float = 0.0
-    group_rows: int | None = None
+    rest_splay: float = math.pi / 2
+    group_rows: int | None = 1
 
     def __post_init__(self) -> None:
         _require(
@@ -400,6 +417,25 @@ PRESETS: Mapping[str, WigConfig] = {
 
 DEFAULT_WIG = "curly"
 
+WAVE1_COHESION = 50.0
+"""``κ`` of the first release's wigs (calibrated on its paddle brush, whose strokes pushed whole groups aside)."""
+
+
+def wave1_wig(wig: str | WigConfig) -> WigConfig:
+    """The first release's version of a wig, kept as a benchmark case: DER flex strands at 5 edges per curl turn
+    (≤ 16), ``κ = 50``, the compact lattice (6 mm minimum spacing, about ``√(n_groups/1.5)`` rows) and the entwined
+    rest curves stress-free (``rest_splay = 0``). Brushed with :func:`hairbrush_env.scene.wave1_scene`."""
+    w = get_wig(wig)
+    return w.replace(
+        rod_kind="flex",
+        edges_per_turn=5,
+        max_edges=16,
+        young=wisp_young(w.strand_radius, cohesion=WAVE1_COHESION),
+        min_spacing=6e-3,
+        group_rows=None,
+        rest_splay=0.0,
+    )
+
 
 def get_wig(wig: str | WigConfig) -> WigConfig:
     """Resolve a preset name (or pass a :class:`WigConfig` through).
@@ -505,6 +541,9 @@ def _polygon_turns(wig: WigConfig) -> float:
     return turns
 
 
+_STRAIGHT_GROUP_RADIUS = 4e-3
+
+
 def _grid(n: int, rows: int | None = None) -> tuple[list[tuple[int, int]], int, int]:
     # Rows along x (towards the brush), columns along y (across the brush): wider than deep, so that the
     # bristles reach through the curtain.
@@ -528,12 +567,15 @@ def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
         k += size
     cells, rows, cols = _grid(len(groups), wig.group_rows)
     r = wig.strand_radius
-    # Straight hair: the two strands of a group hang side by side, one hair diameter apart (R_eff = 1.5 r... 2 r).
-    radius = wig.curl_radius if wig.curliness > 0 else 2.0 * r
+    # Straight hair: the strands of a group hang side by side across the curtain (phase π/2: along y), 8 mm apart, so
+    # a comb tine through the group axis passes between them instead of wedging into a gap narrower than itself
+    # next to the clamp (a 3.2 mm gap diverged at the first insertion).
+    radius = wig.curl_radius if wig.curliness > 0 else _STRAIGHT_GROUP_RADIUS
     phases: list[float] = []
     for g, members in enumerate(groups):
         i, j = cells[g]
-        offset = 0.5 * math.pi * ((i + j) % 2)  # checkerboard: neighbours differ by π/2 (module docstring)
+        # checkerboard: neighbours differ by π/2 (module docstring); straight groups have no link to keep apart
+        offset = 0.5 * math.pi * ((i + j) % 2) if wig.curliness > 0 else 0.5 * math.pi
         phases.extend(offset + 2.0 * math.pi * m / len(members) for m in range(len(members)))
     owner = np.array([g for g, members in enumerate(groups) for _ in members])
     need = 2.0 * r + wig.root_gap

@@ -13,11 +13,11 @@
 
 Stroke (Algorithm 1, inner loop): the brush waits level beside the hair (bristle tips 15 mm in front of the
 wig) at the start height ``z_bottom + b_l·L_b`` (``b_l`` = normalized brush length measured up from the free ends,
-``L_b`` = brushable length: from the settled free ends up to the highest start the brush head allows, 2 cm below
-the roots, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed in to the brushing
-depth, then pulled straight down at constant speed until the whole brush is below the free ends (1 cm below their
-rest height at most, or on until it has cleared them wherever it dragged them, ``SceneConfig.pull_floor_z``); the load
-cell is read at 10 Hz and the stroke stops as soon as a reading reaches the abort force (``F_T`` by default).
+``L_b`` = brushable length: from the settled free ends up to the highest start the brush head allows, 8 mm below
+the roots with the default comb, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed
+in to the brushing depth, then pulled straight down at constant speed until the whole brush is below every strand,
+wherever it dragged them (down to ``SceneConfig.pull_floor_z``); the load cell is read at 10 Hz and the stroke stops
+as soon as a reading reaches the abort force, if the policy set one (``BrushingSim.stroke(abort_force=...)``).
 The speed is 0.1 m/s by default:
 the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
 """
@@ -47,6 +47,7 @@ __all__ = [
     "StrokeResult",
     "VelocityStep",
     "build_scene",
+    "wave1_scene",
 ]
 
 PAIN_THRESHOLD = 10.0
@@ -59,6 +60,7 @@ _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 # The arm holds the brush level below its brushing workspace too (IK residual < 0.01 mm down to 0.35 m), so a pull may
 # go on below 0.55 m (SceneConfig.pull_floor_z).
 _PULL_FLOOR_MIN = 0.35
+_QUIET_SECONDS = 0.3  # end of the pre-brushed settle at the contact step (BrushingSim.settled_state)
 # Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
 # apart [m] — a strand would have to move 0.3 m/s towards the brush to meet it within one 10 ms control period — and
@@ -116,22 +118,22 @@ class SceneConfig:
     max_speed : float
         Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
     pull_floor_z : float or None
-        ``None`` (default): a pull ends 1 cm below the rest free ends, or earlier once the whole brush is below every
-        strand. A float [m] (≥ 0.35, where the arm still holds the brush level): the pull goes on until the brush is
-        below every strand, however far it dragged the curls, down to this height. A jammed brush straightens the
-        curls and drags them far below their rest ends (curly under the paddle brush at b_l = 1 came out ~17 cm below
-        them, z = 0.44 m); without a floor such a pull ends with the curls still on the brush, which then withdraws
-        sideways through them. Pulling through squeezed the default wig's strands to 0.16–0.21 of the sum of radii
-        (curly and coily, against ≥ 0.5 with the short pull), so the default keeps the short pull
-        (``docs/detangling.md``).
+        A float [m] (≥ 0.35, where the arm still holds the brush level): the pull goes on until the brush is below
+        every strand, however far it dragged the curls, down to this height. Default 0.55, 7 cm below the rest free
+        ends (``free_end_z``): a jammed brush straightens the curls and drags them below their rest ends, and a pull
+        that stops at them leaves the curls on the brush, which then withdraws sideways through them. Pulling on
+        further (0.40) removed no more link, but the strands, taut between the roots and a tine, were squeezed to
+        0.19–0.45 of the sum of radii. ``None``: a pull ends 1 cm below the rest free ends, or earlier once the whole
+        brush is below every strand (the wave-1 stroke, kept for benchmarks; ``docs/detangling.md``).
     scalp_clearance : float
-        Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 9 mm: with the
-        paddle brush (plate half height 11 mm) the stroke starts 2 cm below the roots; closer starts bent the stiff
-        wisps sharply around the bristles right at the clamp (straight b_l = 1 read 26 N at 1.3 cm).
+        Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 5 mm (default):
+        with the comb's plate the tines enter 8 mm below the roots; link above the highest tine is never combed
+        (starting 12 mm below the roots left twice the link after a stroke). The soft paddle brush needs ~9 mm:
+        closer starts bent the stiff wisps sharply around its bristles at the clamp.
     """
 
     wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
-    brush: str | BrushConfig = "paddle"
+    brush: str | BrushConfig = "comb"
     timestep: float = 0.01
     contact_timestep: float = 0.001
     control_dt: float = 0.01
@@ -150,8 +152,8 @@ class SceneConfig:
     )
     hair_hair: bool = True
     max_speed: float = 50.0
-    scalp_clearance: float = 0.009
-    pull_floor_z: float | None = None
+    scalp_clearance: float = 0.005
+    pull_floor_z: float | None = 0.55
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
@@ -202,6 +204,14 @@ class SceneConfig:
     def brush_config(self) -> BrushConfig:
         assert isinstance(self.brush, BrushConfig)
         return self.brush
+
+
+def wave1_scene(wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG, **changes) -> SceneConfig:
+    """The first release's scene for a wig, kept as a benchmark case: :func:`hairbrush_env.hair.wave1_wig`, the soft
+    ``paddle`` brush with a 9 mm scalp clearance and the short pull (``pull_floor_z = None``)."""
+    return SceneConfig(
+        wig=hairmod.wave1_wig(wig), brush="paddle", scalp_clearance=0.009, pull_floor_z=None, **changes
+    )
 
 
 @dataclass(frozen=True)
@@ -513,6 +523,13 @@ class BrushingSim:
             self.use_step(contact=False)
             hairmod.set_state(self.model, self.data, self._base_state)
             hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
+            # Prestressed curls (WigConfig.rest_splay) pressed against each other chatter at the 10 ms step (a
+            # contact limit cycle: joint speeds ~1 rad/s, vertices ~10 mm/s, however long the settle); at the
+            # contact step they come to rest within 0.3 s.
+            self.use_step(contact=True)
+            for _ in range(round(_QUIET_SECONDS / self.model.opt.timestep)):
+                mujoco.mj_step(self.model, self.data)
+            self.use_step(contact=False)
             state = hairmod.get_state(self.model, self.data)
             self.cache.put(self.wig, seed, self.model_hash, state)
         return state

@@ -22,7 +22,7 @@ import gymnasium as gym
 import numpy as np
 
 import hairbrush_env  # noqa: F401  (registers the envs)
-from hairbrush_env.hair import PRESETS
+from hairbrush_env.hair import PRESETS, wave1_wig
 
 
 def _policy_action(env_id: str, space, rng) -> np.ndarray:
@@ -65,9 +65,10 @@ def bench_vector(env_id: str, obs_mode: str, steps: int, workers: int, wig: str)
 
 
 def strand_models(name: str) -> dict[str, object]:
-    """The default (chain) preset and the wave-1 flex wig of the same preset (5 edges per turn, ≤ 16 edges)."""
+    """The default (chain) preset and the wave-1 flex wig of the same preset (``hair.wave1_wig``: 5 edges per turn,
+    ≤ 16 edges, κ = 50, compact lattice), both in the env's default scene."""
     wig = PRESETS[name]
-    return {"chain": wig, "flex wave 1": wig.replace(rod_kind="flex", edges_per_turn=5, max_edges=16)}
+    return {"chain": wig, "flex wave 1": wave1_wig(wig)}
 
 
 def main() -> None:

@@ -13,14 +13,16 @@ Sections (each prints a markdown table; every row of a table comes from this one
 * ``profile`` — where a stroke's CPU goes: MuJoCo's stages, the Python around them, the per-step pass-through check;
 * ``force_table`` — maximum force vs curliness and b_l (thesis Fig. 3.7) with the per-step pass-through check.
 
-Cases: ``chain`` (the default wig), ``flex wave 1`` (the first release's wig: DER flex, 5 edges per curl turn, ≤ 16
-edges) and ``chain, wave-1 edges`` (the same discretization as a chain: the like-for-like comparison).
+Cases: ``chain (default)`` (the default wig and comb), ``flex wave 1`` (the first release's wig and scene,
+``scene.wave1_scene``: DER flex, 5 edges per curl turn, ≤ 16 edges, κ = 50, compact lattice, paddle brush, short pull)
+and ``chain, wave-1 wig`` (the same wig and scene as chains: the like-for-like comparison of strand models).
 Single-thread physics costs use CPU time (``time.process_time``).
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import time
 from collections.abc import Callable, Sequence
 
@@ -38,12 +40,14 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     return "\n".join(lines)
 
 
-def wig_cases(base: hair.WigConfig) -> dict[str, hair.WigConfig]:
-    """The compared strand models of one wig (see the module docstring)."""
+def wig_cases(base: hair.WigConfig) -> dict[str, scene.SceneConfig]:
+    """The compared scenes of one wig (see the module docstring): the default design, the wave-1 wig and scene
+    (``scene.wave1_scene``) as chains at the wave-1 edges, and the wave-1 flex wig itself."""
+    wave1 = scene.wave1_scene(base)
     return {
-        "chain": base,
-        "chain, wave-1 edges": base.replace(edges_per_turn=5, max_edges=16),
-        "flex wave 1": base.replace(rod_kind="flex", edges_per_turn=5, max_edges=16),
+        "chain (default)": scene.SceneConfig(wig=base),
+        "chain, wave-1 wig": dataclasses.replace(wave1, wig=wave1.wig_config.replace(rod_kind="chain")),
+        "flex wave 1": wave1,
     }
 
 
@@ -83,8 +87,9 @@ def section_rest(args: argparse.Namespace) -> None:
     for n in (24,) if args.quick else (24, 48):
         base = hair.PRESETS[hair.DEFAULT_WIG].replace(n_strands=n)
         ms_flex = None
-        for label, wig in wig_cases(base).items():
-            sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
+        for label, cfg in wig_cases(base).items():
+            wig = cfg.wig_config
+            sim = scene.BrushingSim(cfg)
             sim.reset(0)
             sim.use_step(contact=True)
             m, d = sim.model, sim.data
@@ -139,8 +144,9 @@ def section_stroke(args: argparse.Namespace) -> None:
     for n in (24,) if args.quick else (24, 48):
         base = hair.PRESETS[hair.DEFAULT_WIG].replace(n_strands=n)
         cells = []
-        for label, wig in wig_cases(base).items():
-            sim = scene.BrushingSim(scene.SceneConfig(wig=wig))
+        for label, cfg in wig_cases(base).items():
+            wig = cfg.wig_config
+            sim = scene.BrushingSim(cfg)
             st = [stroke_stats(sim, s) for s in seeds]
             sim.close()
             mean = {
@@ -278,17 +284,10 @@ def section_force_table(args: argparse.Namespace) -> None:
 
 
 def section_pull_through(args: argparse.Namespace) -> None:
-    """Pull-through stroke (b_l = 1, no abort) of the default wig and of the detangling design (docs/detangling.md)
-    against the wave-1 flex wig, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb against the wave-1 flex wig and scene, seeds
+    7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
     seeds = (7,) if args.quick else (7, 11)
-    base = hair.PRESETS[hair.DEFAULT_WIG]
-    comb = base.replace(young=hair.wisp_young(base.strand_radius, cohesion=12.5), min_spacing=0.04, group_rows=2,
-                        rest_splay=0.5 * np.pi)  # fmt: skip
-    cases = [
-        ("flex wave 1, paddle", scene.SceneConfig(wig=wig_cases(base)["flex wave 1"])),
-        ("chain (default), paddle", scene.SceneConfig(wig=base)),
-        ("chain, detangling design, comb", scene.SceneConfig(wig=comb, brush="comb", scalp_clearance=0.005)),
-    ]
+    cases = list(wig_cases(hair.PRESETS[hair.DEFAULT_WIG]).items())[::-1]  # flex first: the reference
     print(
         f"\n## Pull-through stroke through '{hair.DEFAULT_WIG}', b_l = 1, no abort, seeds {seeds}, CPU time\n"
     )

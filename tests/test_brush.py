@@ -64,6 +64,6 @@ def test_bad_brush_configs_name_the_field(kw, name):
 
 def test_presets_resolve_by_name():
     assert get_brush("paddle") == BrushConfig()
-    assert get_brush("comb").tine_length == pytest.approx(0.08) and not get_brush("comb").hinged
+    assert get_brush("comb").tine_length == pytest.approx(0.06) and not get_brush("comb").hinged
     with pytest.raises(ValueError, match="valid names"):
         get_brush("nope")

@@ -100,6 +100,55 @@ def _add_strokes(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_cmd_strokes)
 
 
+def _cmd_repeat(args: argparse.Namespace) -> int:
+    from ..studies.repeated_strokes import run_repeated, summary_markdown
+
+    wigs = _wig_names(args.wigs)
+    for flag, value, ok in (
+        ("--strokes", args.strokes, args.strokes >= 1),
+        ("--seeds", args.seeds, args.seeds >= 1),
+        ("--seed", args.seed, args.seed >= 0),
+        ("--brush-length", args.brush_length, 0.0 < args.brush_length <= 1.0),
+    ):
+        if not ok:
+            raise SystemExit(f"hairbrush repeat: {flag} {value!r} is out of range")
+    try:
+        rows = run_repeated(
+            wigs,
+            seeds=range(args.seed, args.seed + args.seeds),
+            n_strokes=args.strokes,
+            brush_length=args.brush_length,
+            out=args.out,
+            progress=not args.quiet,
+        )
+    except ValueError as exc:
+        raise SystemExit(f"hairbrush repeat: {exc}") from exc
+    print(summary_markdown(rows))
+    print(f"wrote {args.out}/repeat.csv, summary.md, repeat.png")
+    return 0
+
+
+def _add_repeat(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "repeat",
+        help="repeated full strokes: force and entanglement per stroke (thesis Fig. 3.6(i), eq. 3.4)",
+        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
+    )
+    p.add_argument("--wigs", default="curly,coily", help="comma-separated preset names, or 'all'")
+    p.add_argument("--strokes", type=int, default=6, help="strokes per series")
+    p.add_argument(
+        "--brush-length", type=float, default=1.0, help="normalized start height b_l of every stroke"
+    )
+    p.add_argument("--seeds", type=int, default=3, help="series (pre-brushed wigs S, S+1, ...)")
+    p.add_argument("--seed", type=int, default=0, help="first seed S")
+    p.add_argument(
+        "--out", default="runs/repeat", help="output directory (keeps the complete series of a rerun)"
+    )
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=_cmd_repeat)
+
+
 def register(sub: argparse._SubParsersAction) -> None:
     _add_compare(sub)
     _add_strokes(sub)
+    _add_repeat(sub)

@@ -38,10 +38,12 @@ from .spec import RodSpec, resolve_body
 
 __all__ = ["CHAIN_SOLVER_ITERATIONS", "add_chain_rod", "chain_frames"]
 
-CHAIN_SOLVER_ITERATIONS = 30
+CHAIN_SOLVER_ITERATIONS = 50
 """PGS iteration cap for chain rods in contact. An unconverged PGS solve acts as a soft contact, so the cap sets how far
-strands squeezed by the brush sink into each other; 30 leaves a margin at a few per cent of a stroke's cost (table:
-``docs/rods.md``, ``scripts/benchmark_sim.py --section solver``)."""
+strands squeezed by the brush sink into each other. 30 sufficed for the soft paddle brush (``docs/rods.md``,
+``scripts/benchmark_sim.py --section solver``); under the comb at the pain threshold it let curly strands sink to 0.32
+of the sum of radii, 50 kept them at 0.52 for the same CPU time (the solve stops at its tolerance first in most
+steps; ``docs/detangling.md``)."""
 
 # MuJoCo refuses moving bodies whose mass or inertia is below mjMINVAL (1e-15): a 50 µm, 1.7 mm segment has a polar
 # inertia of 2e-17 kg m². Floored, as the flex floors its twist inertias; it only slows the fastest twist mode.

@@ -13,13 +13,32 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
+from ..io import read_csv_rows, write_csv_rows, write_text
 from ..pass_through import PassThroughMonitor
 from ..scene import BrushingSim
 
-__all__ = ["plateau_stroke", "repeated_strokes"]
+if TYPE_CHECKING:
+    from ..hair import WigConfig
+
+__all__ = [
+    "COLUMNS",
+    "plateau_stroke",
+    "plot_repeated",
+    "repeated_strokes",
+    "run_repeated",
+    "summary_markdown",
+]
+
+COLUMNS = [
+    "wig", "seed", "brush_length", "stroke", "max_force", "entwined", "made", "entanglement", "crossings",
+    "min_hair_hair", "min_hair_bristle", "cpu_s", "sim_s", "steps", "aborted", "diverged",
+]  # fmt: skip
 
 
 def repeated_strokes(
@@ -89,3 +108,142 @@ def plateau_stroke(max_forces: list[float], tolerance: float = 0.4) -> int | Non
         if abs(max_forces[k] - max_forces[k - 1]) < tolerance:
             return k + 1
     return None
+
+
+def _read(path: Path) -> list[dict[str, Any]]:
+    return read_csv_rows(
+        path,
+        floats=("brush_length", "max_force", "entwined", "made", "entanglement", "min_hair_hair",
+                "min_hair_bristle", "cpu_s", "sim_s"),
+        ints=("seed", "stroke", "crossings", "steps"),
+        bools=("aborted", "diverged"),
+    )  # fmt: skip
+
+
+def run_repeated(
+    wigs: Sequence[str | WigConfig],
+    *,
+    seeds: Sequence[int] = (0, 1, 2),
+    n_strokes: int = 6,
+    brush_length: float = 1.0,
+    out: str | Path | None = None,
+    progress: bool = True,
+) -> list[dict[str, Any]]:
+    """Fig. 3.6(i) for every ``(wig, seed)``: :func:`repeated_strokes` rows with ``wig``, ``seed`` and
+    ``brush_length`` added (columns :data:`COLUMNS`). Wigs are preset names or
+    :class:`~hairbrush_env.hair.WigConfig` (keyed by name).
+
+    With ``out``, ``repeat.csv`` is rewritten atomically after every stroke; a rerun keeps the series that were
+    complete and re-runs the others from their pre-brushed wig. ``summary.md`` and ``repeat.png`` follow at the end.
+    """
+    from tqdm import tqdm
+
+    from .. import hair
+    from ..scene import SceneConfig
+
+    unknown = [w for w in wigs if isinstance(w, str) and w not in hair.PRESETS]
+    if unknown or not wigs:
+        raise ValueError(f"wigs: unknown preset(s) {unknown!r}; choose from {list(hair.PRESETS)}")
+    configs = {c.name: c for c in map(hair.get_wig, wigs)}
+    names = list(configs)
+    if not (isinstance(n_strokes, int) and n_strokes >= 1):
+        raise ValueError(f"strokes: must be an integer >= 1, got {n_strokes!r}")
+    if not (math.isfinite(brush_length) and 0.0 < brush_length <= 1.0):
+        raise ValueError(f"brush_length: must be in (0, 1], got {brush_length!r}")
+    csv_path = Path(out) / "repeat.csv" if out is not None else None
+    rows = _read(csv_path) if csv_path is not None and csv_path.exists() else []
+    complete = {
+        key
+        for key in {(r["wig"], r["seed"]) for r in rows if r["brush_length"] == brush_length}
+        if sum(1 for r in rows if (r["wig"], r["seed"]) == key and r["brush_length"] == brush_length)
+        == n_strokes + 1
+    }
+    rows = [r for r in rows if (r["wig"], r["seed"]) in complete or r["brush_length"] != brush_length]
+    todo = [(w, int(s)) for w in names for s in seeds if (w, int(s)) not in complete]
+    bar = tqdm(total=len(todo) * n_strokes, desc="strokes", unit="stroke", disable=not progress)
+    try:
+        for wig in dict.fromkeys(w for w, _ in todo):
+            with BrushingSim(SceneConfig(wig=configs[wig])) as sim:
+                for _, seed in (t for t in todo if t[0] == wig):
+
+                    def record(row: dict[str, Any], wig: str = wig, seed: int = seed) -> None:
+                        rows.append(dict(row, wig=wig, seed=seed, brush_length=brush_length))
+                        if csv_path is not None:
+                            write_csv_rows(csv_path, rows, COLUMNS)
+                        if row["stroke"] > 0:
+                            bar.set_postfix(wig=wig, seed=seed, f_max=f"{row['max_force']:.1f}")
+                            bar.update(1)
+
+                    repeated_strokes(
+                        sim, seed=seed, brush_length=brush_length, n_strokes=n_strokes, on_stroke=record
+                    )
+    finally:
+        bar.close()
+    rows.sort(key=lambda r: (names.index(r["wig"]) if r["wig"] in names else -1, r["seed"], r["stroke"]))
+    if out is not None:
+        write_csv_rows(csv_path, rows, COLUMNS)
+        write_text(Path(out) / "summary.md", summary_markdown(rows))
+        plot_repeated(rows, Path(out) / "repeat.png")
+    return rows
+
+
+def _series(rows: Sequence[dict[str, Any]]) -> dict[tuple[str, int], list[dict[str, Any]]]:
+    out: dict[tuple[str, int], list[dict[str, Any]]] = {}
+    for r in rows:
+        out.setdefault((r["wig"], r["seed"]), []).append(r)
+    return {k: sorted(v, key=lambda r: r["stroke"]) for k, v in out.items()}
+
+
+def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
+    """One line per ``(wig, seed)``: forces per stroke, the eq. 3.4 plateau, entanglement left, pass-through."""
+    lines = [
+        "| wig | seed | b_l | F_max per stroke [N] | plateau (eq. 3.4) | Σ|Lk| start | left after each stroke "
+        "| crossings | min hair–hair |",
+        "|---|---:|---:|---|---:|---:|---|---:|---:|",
+    ]
+    for (wig, seed), rs in _series(rows).items():
+        e0 = rs[0]["entanglement"]
+        forces = [r["max_force"] for r in rs[1:]]
+        plateau = plateau_stroke(forces)
+        hh = min((r["min_hair_hair"] for r in rs[1:]), default=math.nan)
+        left = " ".join(f"{r['entanglement'] / max(e0, 1e-9):.2f}" for r in rs[1:])
+        lines.append(
+            f"| {wig} | {seed} | {rs[0]['brush_length']:.2f} | {' '.join(f'{f:.1f}' for f in forces)} | "
+            f"{plateau if plateau is not None else '–'} | {e0:.1f} | "
+            f"{left} | "
+            f"{sum(r['crossings'] for r in rs[1:])} | {hh:.2f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def plot_repeated(rows: Sequence[dict[str, Any]], path: str | Path) -> Path:
+    """Fig. 3.6(i): maximum force and the fraction of the entanglement left per stroke, mean ± std over seeds."""
+    from ..scene import PAIN_THRESHOLD
+    from ..viz import PALETTE, new_figure, save_figure
+
+    fig, axes = new_figure(2, 1, width=10.0, height=4.0)
+    by_wig: dict[str, list[list[dict[str, Any]]]] = {}
+    for (wig, _), rs in _series(rows).items():
+        by_wig.setdefault(wig, []).append(rs)
+    for i, (wig, series) in enumerate(by_wig.items()):
+        n = min(len(rs) for rs in series)
+        k = np.arange(1, n)
+        force = np.array([[r["max_force"] for r in rs[1:n]] for rs in series])
+        left = np.array(
+            [[r["entanglement"] / max(rs[0]["entanglement"], 1e-9) for r in rs[:n]] for rs in series]
+        )
+        c = PALETTE[i % len(PALETTE)]
+        label = f"{wig} ({len(series)} seeds)"
+        axes[0, 0].errorbar(k, force.mean(0), yerr=force.std(0), fmt="o-", capsize=3, color=c, label=label)
+        axes[0, 1].errorbar(
+            np.arange(n), left.mean(0), yerr=left.std(0), fmt="o-", capsize=3, color=c, label=label
+        )
+    axes[0, 0].axhline(PAIN_THRESHOLD, color="k", ls="--", lw=1, label="pain threshold F_T")
+    axes[0, 0].set(xlabel="stroke", ylabel="max brushing force [N]", title="force per stroke (Fig. 3.6(i))")
+    axes[0, 1].axhline(0.3, color="k", ls=":", lw=1, label="30 % left")
+    axes[0, 1].set(xlabel="stroke", ylabel="entanglement left (Σ|Lk| / start)", ylim=(0, None),
+                   title="entanglement per stroke")  # fmt: skip
+    for ax in axes[0]:
+        ax.legend(fontsize=7)
+    save_figure(fig, path)
+    return Path(path)

@@ -19,12 +19,13 @@ def test_plateau_stroke_is_eq_3_4():
 
 
 def test_rows_of_a_short_run():
-    wig = get_wig("curly").replace(name="test_rep", n_strands=4, n_triples=0, length=0.12)
+    wig = get_wig("curly").replace(name="test_rep", n_strands=4, n_triples=0, length=0.2)
     sim = BrushingSim(SceneConfig(wig=wig))
     seen = []
     rows = repeated_strokes(sim, seed=0, n_strokes=2, on_stroke=seen.append)
     assert rows == seen and [r["stroke"] for r in rows] == [0, 1, 2]
-    assert rows[0]["entanglement"] == pytest.approx(sim.layout.n_links, rel=0.2)
+    # the prestressed pairs shed part of their built link in the shake, never gain (measured 3.38 of 4.21)
+    assert 0.5 * sim.layout.n_links < rows[0]["entanglement"] < sim.layout.n_links + 0.5
     for r in rows[1:]:
         assert r["max_force"] > 0 and not r["aborted"] and not r["diverged"] and r["cpu_s"] > 0
         assert r["crossings"] == 0 and r["min_hair_hair"] > 0.5 and not math.isnan(r["min_hair_bristle"])
@@ -61,3 +62,20 @@ def test_prestressed_pairs_comb_out_and_the_force_falls():
     assert all(r["crossings"] == 0 and r["min_hair_hair"] >= 0.5 for r in rows[1:])
     control = repeated_strokes(_small_curtain(0.0, floor=0.4), seed=0, n_strokes=4)
     assert min(r["min_hair_hair"] for r in control[1:]) < 0.5
+
+
+def test_run_repeated_writes_resumable_series(tmp_path):
+    """The ``hairbrush repeat`` study: one CSV row per stroke and series, a summary and a plot; a rerun keeps the
+    complete series (same rows, nothing simulated) and re-runs an incomplete one."""
+    from hairbrush_env.studies.repeated_strokes import run_repeated
+
+    wig = get_wig("curly").replace(name="test_run_rep", n_strands=2, n_triples=0, length=0.12)
+    rows = run_repeated([wig], seeds=[0], n_strokes=2, out=tmp_path, progress=False)
+    assert [(r["wig"], r["seed"], r["stroke"]) for r in rows] == [("test_run_rep", 0, k) for k in range(3)]
+    assert (tmp_path / "repeat.png").stat().st_size > 0 and "test_run_rep" in (
+        tmp_path / "summary.md"
+    ).read_text()
+    again = run_repeated([wig], seeds=[0], n_strokes=2, out=tmp_path, progress=False)
+    assert [r["cpu_s"] for r in again] == pytest.approx([r["cpu_s"] for r in rows])
+    with pytest.raises(ValueError, match="wigs"):
+        run_repeated(["bogus"], out=tmp_path)
