@@ -406,7 +406,7 @@ class WigConfig:
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
 # hanging (curl "shrinkage" = 1 − 1/√(1 + (2πR_C)²)) even where the pulled-straight length is similar.
 PRESETS: Mapping[str, WigConfig] = {
-    "straight": WigConfig(name="straight", curliness=0.0, length=0.31),
+    "straight": WigConfig(name="straight", curliness=0.0, length=0.31, n_triples=0),
     "wavy": WigConfig(name="wavy", curliness=0.15, curl_radius=0.014, length=0.28),
     "loose_curl": WigConfig(name="loose_curl", curliness=0.3, curl_radius=0.013, length=0.26),
     "curly": WigConfig(name="curly", curliness=0.5, curl_radius=0.012, length=0.25),

@@ -60,7 +60,9 @@ _WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 # The arm holds the brush level below its brushing workspace too (IK residual < 0.01 mm down to 0.35 m), so a pull may
 # go on below 0.55 m (SceneConfig.pull_floor_z).
 _PULL_FLOOR_MIN = 0.35
+_RETRACT_GAP = 0.015  # tine tips this far in front of the hair before the brush moves beside it
 _QUIET_SECONDS = 0.3  # end of the pre-brushed settle at the contact step (BrushingSim.settled_state)
+_STEADY_SECONDS, _STEADY_DAMPING = 1.0, 30.0  # hand-steadied rest after the shake (BrushingSim.settled_state)
 # Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
 # apart [m] — a strand would have to move 0.3 m/s towards the brush to meet it within one 10 ms control period — and
@@ -407,6 +409,7 @@ class BrushingSim:
         # Solver of the contact step: what the rods need (rods.configure_rod_options); settable for benchmarks.
         self.contact_solver = mujoco.mjtSolver(int(self.model.opt.solver))
         self.hair_bodies = np.concatenate([v.bodies for v in self.entanglement_meter.views])
+        self._hair_dofs = np.flatnonzero(np.isin(self.model.dof_bodyid, self.hair_bodies))
         # Divergence watch: every dof except the flex rods' twist hinges, whose tiny polar inertia lets them spin
         # at hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
         twist = {f"{n}_twist" for n in self.layout.names} if self.wig.rod_kind == "flex" else set()
@@ -433,7 +436,7 @@ class BrushingSim:
         self.hair_x_range = (float(self.root_origin[0] + lo[0]), float(self.root_origin[0] + hi[0]))
         self.depth_x = float(self.root_origin[0] + self.config.brush_depth)
         self.brush = self.config.brush_config
-        self.retract_x = self.hair_x_range[0] - 0.015 - 0.5 * self.brush.tine_length
+        self.retract_x = self.hair_x_range[0] - _RETRACT_GAP - 0.5 * self.brush.tine_length
         plate = self.model.geom(_HEAD_PLATE).id
         self.top_z = (
             float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - self.config.scalp_clearance
@@ -523,6 +526,17 @@ class BrushingSim:
             self.use_step(contact=False)
             hairmod.set_state(self.model, self.data, self._base_state)
             hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
+            # A curtain one group deep swings as a pendulum after the shake (straight: ±12 cm along x, decaying to
+            # ±5 cm only after 3.5 s under the hair's own damping), while a real wig is brushed once it hangs still:
+            # let it come to rest under a heavy damping of the hair joints, as a hand steadying the wig would.
+            dofs = self._hair_dofs
+            damping = self.model.dof_damping[dofs].copy()
+            self.model.dof_damping[dofs] = damping * _STEADY_DAMPING
+            try:
+                for _ in range(round(_STEADY_SECONDS / self.model.opt.timestep)):
+                    mujoco.mj_step(self.model, self.data)
+            finally:
+                self.model.dof_damping[dofs] = damping
             # Prestressed curls (WigConfig.rest_splay) pressed against each other chatter at the 10 ms step (a
             # contact limit cycle: joint speeds ~1 rad/s, vertices ~10 mm/s, however long the settle); at the
             # contact step they come to rest within 0.3 s.
@@ -714,10 +728,14 @@ class BrushingSim:
                 start_fraction=float(start_fraction),
             )
 
-        # Free-space approach: out to the retract plane, to the start height, settle, tare.
+        # Free-space approach: out to the retract plane, to the start height, settle, tare. The plane clears the
+        # hair where it hangs now: long straight strands swing centimetres out of their rest curtain after the
+        # shake, and a comb moving up at free_speed past a stray free end whipped it into a divergence.
+        hair_front = float(self.hair_curve_array()[..., 0].min())
+        retract_x = min(self.retract_x, hair_front - _RETRACT_GAP - 0.5 * self.brush.tine_length)
         here = self._target
-        ok = self._move(np.array([self.retract_x, 0.0, here[2]]), fast)
-        ok = ok and self._move(np.array([self.retract_x, 0.0, z_start]), free)
+        ok = self._move(np.array([retract_x, 0.0, here[2]]), fast)
+        ok = ok and self._move(np.array([retract_x, 0.0, z_start]), free)
         for _ in range(round(0.1 / self.config.control_dt)):
             ok = ok and self._tick(self._target, None, None)
         if not ok:
@@ -749,7 +767,7 @@ class BrushingSim:
         )
         if not self.diverged:
             # below every strand the way out is free space; an aborted stroke backs out through the hair
-            self._move(np.array([self.retract_x, 0.0, self._target[2]]), free if cleared else fast)
+            self._move(np.array([retract_x, 0.0, self._target[2]]), free if cleared else fast)
         return result(trace, aborted)
 
     def step_velocity(self, v_z: float, v_depth: float, dt: float = 0.1) -> VelocityStep:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from hairbrush_env.hair import get_wig
@@ -34,34 +33,49 @@ def test_rows_of_a_short_run():
         repeated_strokes(sim, n_strokes=0)
 
 
-def _small_curtain(splay: float, floor: float) -> BrushingSim:
-    """Two entwined pairs side by side (a curtain one group deep) under a comb whose tines cross each pair's axis."""
-    from hairbrush_env.brush import BrushConfig
-    from hairbrush_env.hair import wisp_young
-
-    wig = get_wig("curly").replace(
-        name=f"test_curtain_{splay:.2f}", n_strands=4, n_triples=0, length=0.2, young=wisp_young(8e-4, cohesion=12.5),
-        min_spacing=0.04, group_rows=1, rest_splay=splay,
-    )  # fmt: skip
-    brush = BrushConfig(rows=1, columns=5, column_pitch=0.02, tine_length=0.06, hinged=False)
-    return BrushingSim(SceneConfig(wig=wig, brush=brush, scalp_clearance=0.005, pull_floor_z=floor))
+@pytest.fixture(scope="module")
+def curly_three_strokes() -> list[dict]:
+    return repeated_strokes(BrushingSim(SceneConfig(wig="curly")), seed=0, n_strokes=3)
 
 
-def test_prestressed_pairs_comb_out_and_the_force_falls():
-    """Fig. 3.6(i) in reduced form, and what the prestress changes (docs/detangling.md). Pulled through to below the
-    dragged free ends, two pairs with each strand's stress-free shape turned off its pair's axis (rest_splay = π/2)
-    comb out: the force falls from the first stroke and plateaus (eq. 3.4), ≤ 30 % of the link is left after 4
-    strokes (measured 0.09), and the strands never come closer than the sum of radii (measured 1.11). With the
-    entwined rest curves stress-free (rest_splay = 0) the pairs resist being parted and the comb squeezes them to
-    0.09 of the sum of radii to separate them."""
-    rows = repeated_strokes(_small_curtain(np.pi / 2, floor=0.4), seed=0, n_strokes=4)
+def test_default_curly_combs_out(curly_three_strokes):
+    """Fig. 3.6(i) in reduced form on the default wig and comb (curly, seed 0, three full strokes without abort):
+    the force falls from the first stroke, at most 40 % of the entanglement is left after three strokes (measured
+    0.25; six strokes: ``test_fig_3_6_full_strokes_detangle``), no strand crosses another and none comes closer
+    than half the sum of radii to another at any physics step (measured ≥ 0.94)."""
+    rows = curly_three_strokes
     forces = [r["max_force"] for r in rows[1:]]
-    left = rows[-1]["entanglement"] / rows[0]["entanglement"]
-    assert left <= 0.3
-    assert forces[-1] < forces[0] and plateau_stroke(forces) is not None
+    assert forces[-1] < forces[0]
+    assert rows[-1]["entanglement"] <= 0.4 * rows[0]["entanglement"]
     assert all(r["crossings"] == 0 and r["min_hair_hair"] >= 0.5 for r in rows[1:])
-    control = repeated_strokes(_small_curtain(0.0, floor=0.4), seed=0, n_strokes=4)
-    assert min(r["min_hair_hair"] for r in control[1:]) < 0.5
+
+
+def _six_strokes(wig: str, seed: int) -> list[dict]:
+    return repeated_strokes(BrushingSim(SceneConfig(wig=wig)), seed=seed, n_strokes=6)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_fig_3_6_full_strokes_detangle(seed: int):
+    """Fig. 3.6(i) on curly, seeds 0–2: six full strokes without abort; the maximum force falls from the first
+    stroke, plateaus by eq. 3.4 (|Δf_max| < 0.4 N) within six strokes, and at most 30 % of the entanglement is left
+    (measured 0.23 / 0.26 / 0.24, ``hairbrush repeat --wigs curly,coily --seeds 3 --out runs/repeat/fig36``)."""
+    rows = _six_strokes("curly", seed)
+    forces = [r["max_force"] for r in rows[1:]]
+    assert max(forces[1:]) < forces[0] and plateau_stroke(forces) is not None
+    assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
+    assert all(r["crossings"] == 0 for r in rows[1:])
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    reason="coily does not comb out: seed 0 keeps 0.84 of its entanglement after six full strokes (19.5 -> 16.4, "
+    "force 3.8 -> 2.9-3.8 N), seed 1 gains (25.1 -> 27.6, made link 0.8 -> 7.8); docs/detangling.md",
+)
+def test_fig_3_6_coily_detangles():
+    rows = _six_strokes("coily", 0)
+    assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
 
 
 def test_run_repeated_writes_resumable_series(tmp_path):
