@@ -54,17 +54,34 @@ def _six_strokes(wig: str, seed: int) -> list[dict]:
     return repeated_strokes(BrushingSim(SceneConfig(wig=wig)), seed=seed, n_strokes=6)
 
 
+@pytest.fixture(scope="module")
+def curly_six_strokes() -> dict[int, list[dict]]:
+    return {seed: _six_strokes("curly", seed) for seed in (0, 1, 2)}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
-def test_fig_3_6_full_strokes_detangle(seed: int):
-    """Fig. 3.6(i) on curly, seeds 0–2: six full strokes without abort; the maximum force falls from the first
-    stroke, plateaus by eq. 3.4 (|Δf_max| < 0.4 N) within six strokes, and at most 30 % of the entanglement is left
-    (measured 0.23 / 0.26 / 0.24, ``hairbrush repeat --wigs curly,coily --seeds 3 --out runs/repeat/fig36``)."""
-    rows = _six_strokes("curly", seed)
+def test_fig_3_6_full_strokes_detangle(curly_six_strokes, seed: int):
+    """Fig. 3.6(i) on curly, seeds 0–2: six full strokes without abort; every later stroke reads less than the first,
+    at most 30 % of the entanglement is left (measured 0.30 / 0.28 / {S2}; ``hairbrush repeat --wigs curly,coily
+    --seeds 3 --out runs/repeat/fig36``) and no strand crosses another."""
+    rows = curly_six_strokes[seed]
     forces = [r["max_force"] for r in rows[1:]]
-    assert max(forces[1:]) < forces[0] and plateau_stroke(forces) is not None
+    assert max(forces[1:]) < forces[0]
     assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
     assert all(r["crossings"] == 0 for r in rows[1:])
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    reason="seed 0 does not plateau by eq. 3.4 within six strokes: 5.81 3.93 1.73 0.94 1.87 1.02 N (steps of "
+    "0.8-0.9 N at the 1-2 N level, against 0.4 N); seeds 1 and 2 do (docs/detangling.md)",
+)
+def test_fig_3_6_force_plateaus_within_six_strokes(curly_six_strokes):
+    assert all(
+        plateau_stroke([r["max_force"] for r in rows[1:]]) is not None for rows in curly_six_strokes.values()
+    )
 
 
 @pytest.mark.slow
@@ -93,3 +110,20 @@ def test_run_repeated_writes_resumable_series(tmp_path):
     assert [r["cpu_s"] for r in again] == pytest.approx([r["cpu_s"] for r in rows])
     with pytest.raises(ValueError, match="wigs"):
         run_repeated(["bogus"], out=tmp_path)
+
+
+@pytest.mark.parametrize(
+    ("argv", "flag"),
+    [
+        (["--strokes", "0"], "--strokes"),
+        (["--seeds", "0"], "--seeds"),
+        (["--brush-length", "1.5"], "--brush-length"),
+        (["--wigs", "bogus"], "bogus"),
+    ],
+)
+def test_repeat_command_refuses_bad_input_before_simulating(argv, flag, tmp_path):
+    from hairbrush_env.cli import main
+
+    with pytest.raises(SystemExit, match=flag):
+        main(["repeat", "--out", str(tmp_path), "--quiet", *argv])
+    assert not (tmp_path / "repeat.csv").exists()
