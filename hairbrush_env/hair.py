@@ -28,7 +28,8 @@ scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double
 (``R/r = 15``, one wisp turn standing for many real turns, few contacts per turn) jams far less than a real curl, so
 ``κ ≫ 1``; forces grow about linearly in ``κ``. The wave-1 wig used ``κ = 50`` (:data:`WAVE1_COHESION`) under a soft
 paddle brush that pushed whole groups aside. Under the comb, whose tines split every pair, ``κ = 12.5`` puts the
-first full stroke through the curled presets at 5–9 N, below the thesis's pain threshold ``F_T = 10 N``. Stiffer
+first full stroke through the curled presets at 1.5–6.6 N (means over seeds 0–2; curly's single strokes up to 8.8 N),
+below the thesis's pain threshold ``F_T = 10 N``. Stiffer
 wisps read more (``κ = 16``: 7–11 N; 20: 8–10.5 N) but comb out less (curly, seed 0: 0.46 of the entanglement left
 after six strokes at ``κ = 16``) and are squeezed into each other more (``docs/detangling.md``).
 
@@ -49,7 +50,7 @@ so the curls hold their stiffness, and the link of an entwined pair equals its n
 (``rod_kind="flex"``, 5 edges per turn, ≤ 16 edges) is kept for side-by-side benchmarks (``docs/rods.md``).
 The 1 ms contact step that keeps strands from passing through each other sets the cost of a stroke
 (``scripts/benchmark_sim.py``). Hanging length is ``≤ 4 P`` for curled presets: the curly presets use large curls
-(R = 12 mm) so that they hang 6–8 cm and a stroke from 2 cm below the scalp covers most of them (a wisp turn stands
+(R = 12 mm) so that they hang 6–8 cm and a stroke from 8 mm below the roots covers most of them (a wisp turn stands
 for many real curl turns).
 
 Prestress (``WigConfig.rest_splay``): built as coaxial helices with stress-free rest curves, the entwined state is
