@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import mujoco
@@ -437,6 +438,15 @@ class BrushingSim:
         self.depth_x = float(self.root_origin[0] + self.config.brush_depth)
         self.brush = self.config.brush_config
         self.retract_x = self.hair_x_range[0] - _RETRACT_GAP - 0.5 * self.brush.tine_length
+        span = 0.5 * (self.brush.columns - 1) * self.brush.column_pitch + self.brush.tine_radius
+        reach = max(-float(lo[1]), float(hi[1]))
+        if reach > span + 0.01:
+            warnings.warn(
+                f"SceneConfig.brush: its tines span y ±{span:.3f} m of a wig that spans ±{reach:.3f} m, so the outer "
+                f"groups are never combed; give the brush about {math.ceil(reach / self.brush.column_pitch) * 2 + 1} "
+                "columns (BrushConfig.columns) or the wig more group_rows",
+                stacklevel=2,
+            )
         plate = self.model.geom(_HEAD_PLATE).id
         self.top_z = (
             float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - self.config.scalp_clearance

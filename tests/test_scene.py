@@ -299,3 +299,15 @@ def test_force_table_curliest_full_stroke_exceeds_pain_threshold(
 def test_force_table_loose_curl_grows_with_brush_length(thesis_force_table: dict[str, list[float]]) -> None:
     t = thesis_force_table["loose_curl"]
     assert t[0] < t[1] < t[2], t
+
+
+def test_brush_narrower_than_the_wig_warns() -> None:
+    """48 strands make a 0.9 m curtain; the default 23-tine comb spans 0.44 m and would leave its outer groups
+    uncombed: say so, with the number of columns that would cover it. The default wig is covered."""
+    with pytest.warns(UserWarning, match="columns"):
+        scene.BrushingSim(scene.SceneConfig(wig=hair.PRESETS["curly"].replace(n_strands=48))).close()
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        scene.BrushingSim(scene.SceneConfig(wig="straight")).close()
