@@ -30,6 +30,7 @@ import mujoco
 import numpy as np
 
 from hairbrush_env import hair, scene
+from hairbrush_env.brush import get_brush
 from hairbrush_env.pass_through import PassThroughMonitor
 from hairbrush_env.studies import rod_validation
 
@@ -44,8 +45,10 @@ def wig_cases(base: hair.WigConfig) -> dict[str, scene.SceneConfig]:
     """The compared scenes of one wig (see the module docstring): the default design, the wave-1 wig and scene
     (``scene.wave1_scene``) as chains at the wave-1 edges, and the wave-1 flex wig itself."""
     wave1 = scene.wave1_scene(base)
+    # the default comb, widened to one tine per group axis and one between (48 strands: a 0.9 m curtain)
+    comb = dataclasses.replace(get_brush("comb"), columns=max(get_brush("comb").columns, 2 * base.n_groups + 1))
     return {
-        "chain (default)": scene.SceneConfig(wig=base),
+        "chain (default)": scene.SceneConfig(wig=base, brush=comb),
         "chain, wave-1 wig": dataclasses.replace(wave1, wig=wave1.wig_config.replace(rod_kind="chain")),
         "flex wave 1": wave1,
     }
