@@ -144,8 +144,9 @@ WISP_COHESION = 12.5
 """Force-scale calibration ``κ = B_w / (n B_h)`` of a wisp (module docstring, *Wisp scaling*).
 
 ``κ = 1``: the ``n`` hairs of a wisp bend independently; ``κ = n``: they are bonded into one solid keratin fibre. 12.5
-(``E_w = 125 MPa`` at ``r_w = 0.8 mm``): the comb's first full stroke through the curled presets reads 5–9 N and
-repeated strokes comb most of the link out; stiffer wisps read more but comb out less (``docs/detangling.md``)."""
+(``E_w = 125 MPa`` at ``r_w = 0.8 mm``): the comb's first full stroke through the curled presets reads 1.5–6.6 N
+(means over seeds) and repeated strokes comb most of curly's link out; stiffer wisps read more but comb out less
+(``docs/detangling.md``)."""
 
 
 def wisp_young(

@@ -46,7 +46,9 @@ def wig_cases(base: hair.WigConfig) -> dict[str, scene.SceneConfig]:
     (``scene.wave1_scene``) as chains at the wave-1 edges, and the wave-1 flex wig itself."""
     wave1 = scene.wave1_scene(base)
     # the default comb, widened to one tine per group axis and one between (48 strands: a 0.9 m curtain)
-    comb = dataclasses.replace(get_brush("comb"), columns=max(get_brush("comb").columns, 2 * base.n_groups + 1))
+    comb = dataclasses.replace(
+        get_brush("comb"), columns=max(get_brush("comb").columns, 2 * base.n_groups + 1)
+    )
     return {
         "chain (default)": scene.SceneConfig(wig=base, brush=comb),
         "chain, wave-1 wig": dataclasses.replace(wave1, wig=wave1.wig_config.replace(rod_kind="chain")),

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections import Counter
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -141,10 +142,12 @@ def run_repeated(
     from .. import hair
     from ..scene import SceneConfig
 
-    unknown = [w for w in wigs if isinstance(w, str) and w not in hair.PRESETS]
-    if unknown or not wigs:
-        raise ValueError(f"wigs: unknown preset(s) {unknown!r}; choose from {list(hair.PRESETS)}")
-    configs = {c.name: c for c in map(hair.get_wig, wigs)}
+    if not wigs:
+        raise ValueError("wigs: need at least one wig")
+    try:
+        configs = {c.name: c for c in map(hair.get_wig, wigs)}
+    except ValueError as exc:
+        raise ValueError(f"wigs: {exc}") from exc
     names = list(configs)
     if not (isinstance(n_strokes, int) and n_strokes >= 1):
         raise ValueError(f"strokes: must be an integer >= 1, got {n_strokes!r}")
@@ -152,12 +155,8 @@ def run_repeated(
         raise ValueError(f"brush_length: must be in (0, 1], got {brush_length!r}")
     csv_path = Path(out) / "repeat.csv" if out is not None else None
     rows = _read(csv_path) if csv_path is not None and csv_path.exists() else []
-    complete = {
-        key
-        for key in {(r["wig"], r["seed"]) for r in rows if r["brush_length"] == brush_length}
-        if sum(1 for r in rows if (r["wig"], r["seed"]) == key and r["brush_length"] == brush_length)
-        == n_strokes + 1
-    }
+    counts = Counter((r["wig"], r["seed"]) for r in rows if r["brush_length"] == brush_length)
+    complete = {key for key, n in counts.items() if n == n_strokes + 1}
     rows = [r for r in rows if (r["wig"], r["seed"]) in complete or r["brush_length"] != brush_length]
     todo = [(w, int(s)) for w in names for s in seeds if (w, int(s)) not in complete]
     bar = tqdm(total=len(todo) * n_strokes, desc="strokes", unit="stroke", disable=not progress)
