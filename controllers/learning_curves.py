@@ -1,9 +1,10 @@
 """Learning curves of a training run written by :func:`controllers.rl_training.train` (issue #6).
 
 Reads the per-worker Monitor CSVs (every training episode: return, length and the final-step env info) and the
-eval callback's ``eval/evaluations.npz``, and draws one PNG: episode return, pain violations, remaining
-entanglement and strokes per episode against the env steps taken so far. The same table is what the
-reward-hacking check reads: an agent that games the reward shows rising returns without falling entanglement.
+held-out evaluations (``eval/held_out.csv``, :mod:`controllers.held_out_eval`), and draws one PNG: episode return,
+pain violations, remaining entanglement and strokes per episode against the env steps taken so far. The same table
+is what the reward-hacking check reads: an agent that games the reward shows rising returns without falling
+entanglement.
 """
 
 from __future__ import annotations
@@ -48,13 +49,19 @@ def training_episodes(run_dir: str | Path) -> list[dict[str, float]]:
     return rows
 
 
-def evaluations(run_dir: str | Path) -> tuple[np.ndarray, np.ndarray]:
-    """``(timesteps, mean eval return)`` from the eval callback (empty arrays if it never ran)."""
-    p = Path(run_dir) / "eval" / "evaluations.npz"
-    if not p.exists():
-        return np.zeros(0), np.zeros(0)
-    with np.load(p) as z:
-        return z["timesteps"].astype(float), z["results"].mean(axis=1).astype(float)
+def evaluations(run_dir: str | Path) -> list[dict[str, float]]:
+    """Held-out evaluations of ``run_dir`` (``eval/held_out.csv``), one row per evaluation: ``timesteps``, the mean
+    ``return``, ``pain_violations``, ``strokes``, ``entanglement_left`` and ``finished`` over its episodes."""
+    from .held_out_eval import read_evaluations
+
+    by_step: dict[float, list[dict]] = {}
+    for r in read_evaluations(Path(run_dir) / "eval" / "held_out.csv"):
+        by_step.setdefault(float(r["timesteps"]), []).append(r)
+    keys = ("return", "pain_violations", "strokes", "entanglement_left", "finished")
+    return [
+        {"timesteps": t} | {k: float(np.mean([float(r[k]) for r in rows])) for k in keys}
+        for t, rows in sorted(by_step.items())
+    ]
 
 
 def training_steps(run_dir: str | Path) -> list[dict[str, float]]:
@@ -158,10 +165,16 @@ def plot_learning_curves(run_dir: str | Path, path: str | Path | None = None, *,
             ax.legend(fontsize=7)
         ax.set_xlabel("env steps")
         ax.set_ylabel(label)
-    ex, ey = evaluations(run_dir)
-    if len(ex):
-        axes[0, 0].plot(ex, ey, "s-", color=PALETTE[1], label="eval (deterministic)")
-    axes[0, 0].legend(fontsize=7)
+    evals = evaluations(run_dir)
+    if evals:
+        ex = [e["timesteps"] for e in evals]
+        held_out = (("return", axes[0, 0]), ("pain_violations", axes[0, 1]), ("strokes", axes[1, 1]))
+        for key, ax in (*held_out, ("entanglement_left", axes[1, 0])):
+            ax.plot(
+                ex, [e[key] for e in evals], "s-", color=PALETTE[1], label="held-out eval (deterministic)"
+            )
+    for ax in axes[:2, :2].ravel():
+        ax.legend(fontsize=7)
     cfg = run_dir / "config.json"
     title = run_dir.name
     if cfg.exists():

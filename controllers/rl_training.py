@@ -11,11 +11,15 @@ from __future__ import annotations
 
 import csv
 import json
+import multiprocessing
+import signal
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+from hairbrush_env.io import atomic_path, write_json
 
 ALGOS = ("ppo", "sac")
 # info entries the training Monitor logs per episode (their final-step values), for the reward-hacking analysis
@@ -25,16 +29,20 @@ MONITOR_INFO = ("max_force", "pain_violations", "entanglement", "entanglement_in
 @dataclass(frozen=True)
 class TrainConfig:
     env: str = "HairBrush-v0"
-    algo: str = "ppo"
+    algo: str = "sac"
     total_timesteps: int = 2000
     n_envs: int = 2
     seed: int = 0
-    wig: Any = "curly"  # preset name, WigConfig, or comma-separated presets (worker i trains on wig i mod n)
+    # training wigs: "train" (hair.TRAIN_WIGS), preset names (comma-separated) or a WigConfig; every worker holds
+    # them all and each episode picks one, at the training shake seeds hair.TRAIN_WIG_SEEDS
+    wig: Any = "train"
+    # evaluation wigs: "held_out" (hair.HELD_OUT_WIGS at hair.HELD_OUT_SEEDS), names or a WigConfig
+    eval_wigs: Any = "held_out"
     obs_mode: str = "state"
     max_episode_steps: int | None = None  # None: the registered limit
     eval_freq: int = 500  # env steps (summed over workers) between evaluations
-    eval_episodes: int = 2
-    checkpoint_freq: int = 1000
+    eval_episodes: int = 1  # episodes per evaluation wig; 0: no evaluation
+    checkpoint_freq: int = 50  # env steps between checkpoints (a stroke costs ~20 s of CPU: lose little)
     tensorboard: bool = False
     progress_bar: bool = True
     vec_env: str = "subproc"  # "subproc" (one process per worker) or "dummy" (in-process)
@@ -44,12 +52,23 @@ class TrainConfig:
             raise ValueError(f"algo: expected one of {ALGOS}, got {self.algo!r}")
         if self.env not in ("HairBrush-v0", "HairBrushContinuous-v0"):
             raise ValueError(f"env: expected HairBrush-v0 or HairBrushContinuous-v0, got {self.env!r}")
-        for name in ("total_timesteps", "n_envs", "eval_freq", "eval_episodes", "checkpoint_freq"):
+        for name in ("total_timesteps", "n_envs", "eval_freq", "checkpoint_freq"):
             if int(getattr(self, name)) < 1:
                 raise ValueError(f"{name}: must be a positive integer, got {getattr(self, name)!r}")
-        training_wigs(self.wig)  # unknown preset names fail here, not in a worker process
+        if int(self.eval_episodes) < 0:
+            raise ValueError(f"eval_episodes: must be an integer >= 0, got {self.eval_episodes!r}")
+        if int(self.seed) < 0:
+            raise ValueError(f"seed: must be an integer >= 0, got {self.seed!r}")
+        training_wigs(self.wig)  # unknown names fail here, not in a worker process
+        training_wigs(self.eval_wigs)
         if self.vec_env not in ("subproc", "dummy"):
             raise ValueError(f"vec_env: expected 'subproc' or 'dummy', got {self.vec_env!r}")
+
+    @classmethod
+    def from_json(cls, path: str | Path) -> TrainConfig:
+        """The config a run wrote into its ``config.json`` (custom WigConfigs are stored by name only)."""
+        raw = json.loads(Path(path).read_text())
+        return cls(**{k: v for k, v in raw.items() if k in cls.__dataclass_fields__})
 
 
 def _make_algo(cfg: TrainConfig, venv, log_dir: Path):
@@ -108,22 +127,39 @@ def _step_log_callback(path: Path):
 
 
 def training_wigs(wig: Any) -> list[Any]:
-    """The wigs of a run: a WigConfig or preset name → one; ``"wavy,curly"`` → several (validated names)."""
+    """The wigs of a wig argument: a WigConfig → itself; ``"train"`` → :data:`hair.TRAIN_WIGS`; ``"held_out"`` →
+    :data:`hair.HELD_OUT_WIGS`; ``"wavy,curly"`` → those names (validated)."""
+    from hairbrush_env.hair import HELD_OUT_WIGS, PRESETS, TRAIN_WIGS
+
     if not isinstance(wig, str):
         return [wig]
-    from hairbrush_env.hair import PRESETS
-
+    if wig == "train":
+        return list(TRAIN_WIGS)
+    if wig == "held_out":
+        return list(HELD_OUT_WIGS)
     names = [w.strip() for w in wig.split(",") if w.strip()]
-    bad = [w for w in names if w not in PRESETS]
+    bad = [w for w in names if w not in PRESETS and w not in HELD_OUT_WIGS]
     if not names or bad:
-        raise ValueError(f"wig: unknown preset(s) {bad or [wig]!r}; known: {sorted(PRESETS)}")
+        raise ValueError(
+            f"wig: unknown name(s) {bad or [wig]!r}; known: 'train', 'held_out', {sorted(PRESETS)}, "
+            f"{sorted(HELD_OUT_WIGS)}"
+        )
     return names
 
 
-def _vec_env(env_id, wigs, n_envs, seed, env_kwargs, vec_cls, monitor_dir):
-    """``n_envs`` workers, worker i on ``wigs[i % len(wigs)]``, each wrapped in a Monitor (CSV if ``monitor_dir``).
+def wig_seeds_for(wig: Any) -> tuple[int, ...]:
+    """Shake seeds of a wig set: the held-out seeds for held-out wigs, the training seeds otherwise."""
+    from hairbrush_env.hair import HELD_OUT_SEEDS, HELD_OUT_WIGS, TRAIN_WIG_SEEDS
 
-    What SB3's ``make_vec_env`` does, plus a wig per worker.
+    names = [w for w in training_wigs(wig) if isinstance(w, str)]
+    return HELD_OUT_SEEDS if names and all(w in HELD_OUT_WIGS for w in names) else TRAIN_WIG_SEEDS
+
+
+def _vec_env(env_id, worker_wigs, seed, env_kwargs, vec_cls, monitor_dir, monitor_prefix="0"):
+    """One worker per entry of ``worker_wigs`` (a wig or a list of wigs the worker's episodes pick from), each
+    wrapped in a Monitor (CSV ``monitor_dir/<prefix>-<rank>.monitor.csv`` if ``monitor_dir``).
+
+    What SB3's ``make_vec_env`` does, plus the wigs per worker and a file prefix per resumed segment.
     """
 
     def maker(rank: int):
@@ -131,71 +167,142 @@ def _vec_env(env_id, wigs, n_envs, seed, env_kwargs, vec_cls, monitor_dir):
             import gymnasium as gym
             from stable_baselines3.common.monitor import Monitor
 
-            env = gym.make(env_id, **{**env_kwargs, "wig": wigs[rank % len(wigs)]})
-            path = None if monitor_dir is None else str(Path(monitor_dir) / str(rank))
+            if multiprocessing.parent_process() is not None:
+                # a worker process: Ctrl-C is the trainer's to handle (it finishes the step and checkpoints)
+                signal.signal(signal.SIGINT, signal.SIG_IGN)
+            wigs = worker_wigs[rank]
+            env = gym.make(env_id, **{**env_kwargs, "wig": wigs[0] if len(wigs) == 1 else list(wigs)})
+            path = None if monitor_dir is None else str(Path(monitor_dir) / f"{monitor_prefix}-{rank}")
             return Monitor(env, filename=path, info_keywords=MONITOR_INFO)
 
         return make
 
     if monitor_dir is not None:
         Path(monitor_dir).mkdir(parents=True, exist_ok=True)
-    venv = vec_cls([maker(i) for i in range(n_envs)])
+    venv = vec_cls([maker(i) for i in range(len(worker_wigs))])
     venv.seed(seed)  # worker i resets with seed + i, as make_vec_env does
     return venv
 
 
-def train(cfg: TrainConfig, out: str | Path):
-    """Train, evaluate and save; returns the trained model."""
-    from stable_baselines3.common.callbacks import CallbackList, CheckpointCallback, EvalCallback
-    from stable_baselines3.common.logger import configure
+def _env_kwargs(cfg: TrainConfig) -> dict[str, Any]:
+    """Keyword arguments of every env of a run (training and evaluation share one observation space)."""
+    kwargs: dict[str, Any] = {"obs_mode": cfg.obs_mode}
+    if cfg.max_episode_steps is not None:
+        kwargs["max_episode_steps"] = int(cfg.max_episode_steps)  # consumed by gymnasium.make
+    if cfg.env == "HairBrush-v0":
+        # the force trace of the longest wig's full stroke, over training and evaluation wigs
+        from hairbrush_env.envs.stroke import default_trace_length
+        from hairbrush_env.hair import get_wig
+
+        wigs = training_wigs(cfg.wig) + (training_wigs(cfg.eval_wigs) if cfg.eval_episodes else [])
+        kwargs["trace_length"] = max(default_trace_length(get_wig(w).hanging_length) for w in wigs)
+    return kwargs
+
+
+class RunExistsError(ValueError):
+    """``out`` already holds a training run (resume it or choose another directory)."""
+
+
+def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False):
+    """Train (or, with ``resume``, continue the run in ``out`` from its last checkpoint), evaluate on the held-out
+    wigs and save; returns the trained model.
+
+    An interrupt (Ctrl-C) writes a checkpoint before it propagates; a killed process loses the steps since the
+    last periodic checkpoint (``checkpoint_freq``). Logs are appended across resumes.
+    """
+    import stable_baselines3 as sb3
+    from stable_baselines3.common.callbacks import CallbackList
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
+    from .held_out_eval import held_out_eval_callback, read_evaluations
+    from .rl_checkpoint import (
+        appending_csv_logger,
+        checkpoint_callback,
+        checkpoint_state,
+        latest_checkpoint,
+        load_checkpoint,
+        save_checkpoint,
+        truncate_logs,
+    )
+
     out = Path(out)
+    ckpt = latest_checkpoint(out)
+    if resume and ckpt is None:
+        raise ValueError(f"resume: no checkpoint in {out / 'checkpoint'} to resume from")
+    if not resume and (out / "config.json").exists():
+        raise RunExistsError(
+            f"out: {out} already holds a training run; resume it with --resume {out} or choose another --out"
+        )
     out.mkdir(parents=True, exist_ok=True)
-    env_kwargs: dict[str, Any] = {"wig": cfg.wig, "obs_mode": cfg.obs_mode}
-    if cfg.max_episode_steps is not None:
-        env_kwargs["max_episode_steps"] = int(cfg.max_episode_steps)  # consumed by gymnasium.make
+    state = checkpoint_state(ckpt) if resume else {"num_timesteps": 0, "segment": -1}
+    done_steps, segment = int(state["num_timesteps"]), int(state.get("segment", -1)) + 1
+    if done_steps >= cfg.total_timesteps:
+        print(f"{out}: already trained {done_steps} >= {cfg.total_timesteps} steps; nothing to do")
+        return load_checkpoint(ckpt, getattr(sb3, cfg.algo.upper()), None)
+    if resume:
+        truncate_logs(out, done_steps, float(state["wall_time"]))
     vec_cls = SubprocVecEnv if (cfg.vec_env == "subproc" and cfg.n_envs > 1) else DummyVecEnv
     # "module:EnvId" makes gymnasium import hairbrush_env (which registers the envs) inside each worker process;
     # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
     env_id = f"hairbrush_env:{cfg.env}"
+    kwargs = _env_kwargs(cfg)
     wigs = training_wigs(cfg.wig)
-    if cfg.env == "HairBrush-v0" and len(wigs) > 1:
-        # one observation space for all workers: the force trace of the longest wig's full stroke
-        from hairbrush_env.envs.stroke import default_trace_length
-        from hairbrush_env.hair import get_wig
-
-        env_kwargs["trace_length"] = max(default_trace_length(get_wig(w).hanging_length) for w in wigs)
-    # one Monitor CSV per worker: every training episode's return, length and info terms (the learning curve)
-    venv = _vec_env(env_id, wigs, cfg.n_envs, cfg.seed, env_kwargs, vec_cls, out / "monitor")
-    # same VecEnv type as training (SB3 warns otherwise); one eval env per training wig
-    eval_env = _vec_env(env_id, wigs, len(wigs), cfg.seed + 10_000, env_kwargs, vec_cls, None)
-    n_eval = max(cfg.eval_episodes, len(wigs))
+    # a resumed segment seeds its workers from the step count: new episodes, not a replay of the first segment's
+    venv = _vec_env(
+        env_id, [wigs] * cfg.n_envs, cfg.seed + done_steps, {**kwargs, "wig_seeds": wig_seeds_for(cfg.wig)},
+        vec_cls, out / "monitor", monitor_prefix=str(segment),
+    )  # fmt: skip
+    eval_env = None
+    if cfg.eval_episodes:
+        eval_wigs = training_wigs(cfg.eval_wigs)
+        eval_cls = SubprocVecEnv if (cfg.vec_env == "subproc" and len(eval_wigs) > 1) else DummyVecEnv
+        eval_env = _vec_env(
+            env_id, [[w] for w in eval_wigs], cfg.seed + 10_000,
+            {**kwargs, "wig_seeds": wig_seeds_for(cfg.eval_wigs)}, eval_cls, None,
+        )  # fmt: skip
     # written first, so checkpoints of an interrupted run can be loaded and described
     (out / "algo.txt").write_text(cfg.algo.upper() + "\n")
-    (out / "config.json").write_text(json.dumps(asdict(cfg), indent=2, default=str) + "\n")
+    write_json(
+        out / "config.json", asdict(cfg) | {"wig": _describe(cfg.wig), "eval_wigs": _describe(cfg.eval_wigs)}
+    )
     try:
-        model = _make_algo(cfg, venv, out)
-        model.set_logger(configure(str(out), ["csv"] + (["tensorboard"] if cfg.tensorboard else [])))
-        callbacks = CallbackList(
-            [
-                EvalCallback(
-                    eval_env,
-                    n_eval_episodes=n_eval,
-                    eval_freq=max(cfg.eval_freq // cfg.n_envs, 1),
-                    best_model_save_path=str(out / "best"),
-                    log_path=str(out / "eval"),
-                    deterministic=True,
+        if resume:
+            model = load_checkpoint(ckpt, getattr(sb3, cfg.algo.upper()), venv)
+        else:
+            model = _make_algo(cfg, venv, out)
+        model.set_logger(appending_csv_logger(out, cfg.tensorboard))
+        checkpoints = checkpoint_callback(out, cfg.checkpoint_freq, segment=segment)
+        callbacks = [checkpoints, _step_log_callback(out / "steps.csv")]
+        if eval_env is not None:
+            by_step: dict[float, list[float]] = {}
+            for r in read_evaluations(out / "eval" / "held_out.csv"):
+                by_step.setdefault(float(r["timesteps"]), []).append(float(r["return"]))
+            best = max((float(np.mean(v)) for v in by_step.values()), default=-np.inf)
+            callbacks.insert(
+                0,
+                held_out_eval_callback(
+                    eval_env, out, every=cfg.eval_freq, episodes=cfg.eval_episodes, seed=cfg.seed + 10_000,
+                    best_return=best,
                 ),
-                CheckpointCallback(
-                    save_freq=max(cfg.checkpoint_freq // cfg.n_envs, 1), save_path=str(out / "checkpoints")
-                ),
-                _step_log_callback(out / "steps.csv"),
-            ]
-        )
-        model.learn(total_timesteps=cfg.total_timesteps, callback=callbacks, progress_bar=cfg.progress_bar)
-        model.save(out / "model.zip")
+            )  # fmt: skip
+        try:
+            model.learn(
+                total_timesteps=cfg.total_timesteps - done_steps,
+                callback=CallbackList(callbacks),
+                progress_bar=cfg.progress_bar,
+                reset_num_timesteps=not resume,
+            )
+        finally:
+            checkpoints.restore_handler()  # SB3 skips on_training_end when a callback raises
+        save_checkpoint(model, out, segment=segment)
+        with atomic_path(out / "model.zip") as tmp:
+            model.save(tmp)
     finally:
         venv.close()
-        eval_env.close()
+        if eval_env is not None:
+            eval_env.close()
     return model
+
+
+def _describe(wig: Any) -> Any:
+    return wig if isinstance(wig, str) else getattr(wig, "name", str(wig))

@@ -419,6 +419,22 @@ PRESETS: Mapping[str, WigConfig] = {
 
 DEFAULT_WIG = "curly"
 
+# The train / held-out split of RL (issue #12): agents train on presets at shake seeds 0-3 and are evaluated on wigs
+# they never saw, each between two presets in curliness R/P and in length, at shake seeds no training env uses.
+TRAIN_WIGS: tuple[str, ...] = ("wavy", "loose_curl", "curly", "tight_curl", "coily")
+TRAIN_WIG_SEEDS: tuple[int, ...] = (0, 1, 2, 3)
+HELD_OUT_WIGS: Mapping[str, WigConfig] = {
+    # between wavy (0.15, 0.28 m) and loose_curl (0.30, 0.26 m)
+    "held_out_wavy": WigConfig(name="held_out_wavy", curliness=0.22, curl_radius=0.0135, length=0.27),
+    # between loose_curl (0.30, 0.26 m) and curly (0.50, 0.25 m)
+    "held_out_curly": WigConfig(name="held_out_curly", curliness=0.4, curl_radius=0.0125, length=0.255),
+    # between curly (0.50, 0.25 m) and tight_curl (0.65, 0.27 m)
+    "held_out_tight": WigConfig(name="held_out_tight", curliness=0.58, curl_radius=0.012, length=0.26),
+}
+"""Custom wigs no training run sees (resolved by name like the presets: ``get_wig("held_out_curly")``)."""
+HELD_OUT_SEEDS: tuple[int, ...] = (100, 101, 102)
+"""Shake seeds of the held-out evaluation (pre-brushed states no training env draws)."""
+
 WAVE1_COHESION = 50.0
 """``κ`` of the first release's wigs (calibrated on its paddle brush, whose strokes pushed whole groups aside)."""
 
@@ -440,18 +456,20 @@ def wave1_wig(wig: str | WigConfig) -> WigConfig:
 
 
 def get_wig(wig: str | WigConfig) -> WigConfig:
-    """Resolve a preset name (or pass a :class:`WigConfig` through).
+    """Resolve a preset or held-out wig name (or pass a :class:`WigConfig` through).
 
     Raises
     ------
     ValueError
-        Unknown preset name (the message lists the valid names).
+        Unknown name (the message lists the valid names).
     """
     if isinstance(wig, WigConfig):
         return wig
     if isinstance(wig, str) and wig in PRESETS:
         return PRESETS[wig]
-    raise ValueError(f"wig: unknown preset {wig!r}; valid names: {', '.join(PRESETS)}")
+    if isinstance(wig, str) and wig in HELD_OUT_WIGS:
+        return HELD_OUT_WIGS[wig]
+    raise ValueError(f"wig: unknown preset {wig!r}; valid names: {', '.join([*PRESETS, *HELD_OUT_WIGS])}")
 
 
 # ------------------------------------------------------------------------------------------------ layout

@@ -8,11 +8,14 @@ from . import add_webcam_args
 
 
 def _wig_names(text: str) -> list[str]:
-    """Comma-separated preset names, or ``all`` for every preset (straightest first)."""
-    if text == "all":
-        from ..hair import PRESETS
+    """Comma-separated wig names, ``all`` for every preset (straightest first), or ``held_out`` for RL's held-out
+    wigs (``hair.HELD_OUT_WIGS``, brushed from the held-out pre-brushed states)."""
+    from ..hair import HELD_OUT_WIGS, PRESETS
 
+    if text == "all":
         return list(PRESETS)
+    if text == "held_out":
+        return list(HELD_OUT_WIGS)
     return [w.strip() for w in text.split(",") if w.strip()]
 
 
@@ -43,7 +46,11 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "compare", help="run a policy x wig grid on HairBrush-v0 (CSV, Markdown summary, plots)"
     )
-    p.add_argument("--wigs", default="all", help="comma-separated preset names, or 'all' (default)")
+    p.add_argument(
+        "--wigs",
+        default="all",
+        help="comma-separated wig names, 'all' presets (default) or 'held_out' (RL's test wigs)",
+    )
     p.add_argument(
         "--policies", default="sigmoid,naive,full", help="comma-separated policy names or sb3:PATH"
     )

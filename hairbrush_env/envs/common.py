@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -100,6 +101,16 @@ def check_positive(name: str, value: float) -> float:
     return v
 
 
+def check_wig_seeds(wig_seeds: Sequence[int] | None, n_wig_states: int) -> tuple[int, ...]:
+    """The shake seeds an env's episodes pick from: ``wig_seeds``, or ``0 … n_wig_states − 1`` when it is None."""
+    if wig_seeds is None:
+        return tuple(range(int(n_wig_states)))
+    seeds = tuple(wig_seeds)
+    if not seeds or any(not isinstance(v, (int, np.integer)) or isinstance(v, bool) or v < 0 for v in seeds):
+        raise ValueError(f"wig_seeds: expected a non-empty sequence of integers >= 0, got {wig_seeds!r}")
+    return tuple(int(v) for v in seeds)
+
+
 def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float):
     """The :class:`~hairbrush_env.scene.SceneConfig` of an env (wig, webcam size, load-cell noise)."""
     import dataclasses
@@ -135,6 +146,7 @@ class BrushEnvBase(gym.Env):
         detangled_fraction: float,
         reward: RewardConfig | None,
         load_cell_noise: float,
+        wig_seeds: Sequence[int] | None = None,
     ) -> None:
         from ..scene import BrushingSim  # deferred: importing the package must stay cheap
 
@@ -144,6 +156,10 @@ class BrushEnvBase(gym.Env):
             raise ValueError(f"render_mode: expected None or 'rgb_array', got {render_mode!r}")
         if int(n_wig_states) != n_wig_states or n_wig_states < 1:
             raise ValueError(f"n_wig_states: must be a positive integer, got {n_wig_states!r}")
+        self.wig_seeds = check_wig_seeds(wig_seeds, n_wig_states)
+        wigs = list(wig) if isinstance(wig, (list, tuple)) else [wig]
+        if not wigs:
+            raise ValueError("wig: expected a preset name, a WigConfig or a non-empty list of them, got []")
         if not (0.0 <= detangled_fraction < 1.0):
             raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
         for name, value in (("width", width), ("height", height)):
@@ -153,12 +169,15 @@ class BrushEnvBase(gym.Env):
         self.render_mode = render_mode
         self.width, self.height = int(width), int(height)
         self.force_threshold = check_positive("force_threshold", force_threshold)
-        self.n_wig_states = int(n_wig_states)
+        self.n_wig_states = len(self.wig_seeds)
         self.detangled_fraction = float(detangled_fraction)
         self.reward_config = reward if reward is not None else RewardConfig()
-        self.sim = BrushingSim(
-            make_scene_config(wig, width=width, height=height, load_cell_noise=load_cell_noise)
-        )
+        # one compiled scene per wig (built once; reset picks the episode's wig, so switching costs nothing)
+        self.sims = [
+            BrushingSim(make_scene_config(w, width=width, height=height, load_cell_noise=load_cell_noise))
+            for w in wigs
+        ]
+        self.sim = self.sims[0]
         self._e0 = self._e = 1.0
         self._pain = 0
 
@@ -168,9 +187,12 @@ class BrushEnvBase(gym.Env):
     def _reset_sim(self, seed: int | None) -> None:
         """Seed the env, restore a pre-brushed wig and reset the episode's bookkeeping."""
         super().reset(seed=seed)
-        # The seed picks one of a few cached pre-brushed states (shaking a wig anew on every reset would cost
-        # seconds); the load-cell noise of the episode also comes from self.np_random.
-        self.sim.reset(int(self.np_random.integers(self.n_wig_states)))
+        # The seed picks the wig (when the env holds several) and one of a few cached pre-brushed states (shaking a
+        # wig anew on every reset would cost seconds); the load-cell noise of the episode also comes from
+        # self.np_random.
+        if len(self.sims) > 1:
+            self.sim = self.sims[int(self.np_random.integers(len(self.sims)))]
+        self.sim.reset(self.wig_seeds[int(self.np_random.integers(len(self.wig_seeds)))])
         self.sim.load_cell.rng = self.np_random
         self._e0 = self._e = self.sim.entanglement()
         self._pain = 0
@@ -195,4 +217,5 @@ class BrushEnvBase(gym.Env):
         return None
 
     def close(self):
-        self.sim.close()
+        for sim in self.sims:
+            sim.close()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -54,7 +55,8 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
 
     ## Arguments
-    `wig`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `detangled_fraction`,
+    `wig`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `wig_seeds`,
+    `detangled_fraction`,
     `reward`, `load_cell_noise` as in `HairBrush-v0`, plus `max_vertical_speed` (0.2 m/s) and `max_depth_speed`
     (0.05 m/s).
 
@@ -74,6 +76,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         max_vertical_speed: float = 0.2,
         max_depth_speed: float = 0.05,
         n_wig_states: int = 4,
+        wig_seeds: Sequence[int] | None = None,
         detangled_fraction: float = 0.05,
         reward: RewardConfig | None = None,
         load_cell_noise: float = 0.02,
@@ -89,6 +92,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             max_vertical_speed=max_vertical_speed,
             max_depth_speed=max_depth_speed,
             n_wig_states=n_wig_states,
+            wig_seeds=wig_seeds,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,
@@ -101,6 +105,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             height=height,
             force_threshold=force_threshold,
             n_wig_states=n_wig_states,
+            wig_seeds=wig_seeds,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,

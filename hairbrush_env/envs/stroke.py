@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -96,7 +97,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     | argument | default | meaning |
     |---|---|---|
-    | `wig` | `"curly"` | preset name from `hairbrush_env.hair.PRESETS` or a `WigConfig` |
+    | `wig` | `"curly"` | preset name from `hairbrush_env.hair.PRESETS`, a `WigConfig`, or a list of them (each
+      reset picks one with the env's RNG: one env, one observation space, several wigs, e.g. for training) |
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
     | `render_mode` | `None` | `"rgb_array"` returns the webcam image |
     | `width`, `height` | 160, 120 | image size in pixels (observation and render) |
@@ -106,7 +108,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `stroke_speed` | 0.1 | brush speed during the pull [m/s] |
     | `min_brush_length` | 0.1 | b_l for action −1 |
     | `trace_length` | auto | samples kept in `force_trace` (a full stroke at 10 Hz) |
-    | `n_wig_states` | 4 | number of distinct pre-brushed states the seed chooses from |
+    | `n_wig_states` | 4 | number of distinct pre-brushed states the seed chooses from (shake seeds 0 … n − 1) |
+    | `wig_seeds` | `None` | the shake seeds to choose from instead (e.g. states never used in training) |
     | `detangled_fraction` | 0.05 | termination level of the entanglement |
     | `reward` | `RewardConfig()` | reward weights |
     | `load_cell_noise` | 0.02 | load-cell noise s.d. [N] |
@@ -133,6 +136,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         min_brush_length: float = 0.1,
         trace_length: int | None = None,
         n_wig_states: int = 4,
+        wig_seeds: Sequence[int] | None = None,
         detangled_fraction: float = 0.05,
         reward: RewardConfig | None = None,
         load_cell_noise: float = 0.02,
@@ -150,6 +154,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             min_brush_length=min_brush_length,
             trace_length=trace_length,
             n_wig_states=n_wig_states,
+            wig_seeds=wig_seeds,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,
@@ -162,6 +167,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             height=height,
             force_threshold=force_threshold,
             n_wig_states=n_wig_states,
+            wig_seeds=wig_seeds,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,
@@ -173,7 +179,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         self.abort_force = self._default_abort  # this episode's (reset options may override it)
         self.min_brush_length = float(min_brush_length)
         if trace_length is None:
-            trace_length = default_trace_length(self.sim.wig.hanging_length, self.stroke_speed)
+            # one observation space for every wig the env holds: the longest wig's full stroke
+            trace_length = max(
+                default_trace_length(s.wig.hanging_length, self.stroke_speed) for s in self.sims
+            )
         if int(trace_length) != trace_length or trace_length < 1:
             raise ValueError(f"trace_length: must be a positive integer, got {trace_length!r}")
         self.trace_length = int(trace_length)
