@@ -82,8 +82,12 @@ def _make_algo(cfg: TrainConfig, venv, log_dir: Path):
         n_steps = max(8, min(128, cfg.total_timesteps // max(cfg.n_envs, 1) // 2))
         batch = max(8, min(64, n_steps * cfg.n_envs // 2))
         return sb3.PPO(n_steps=n_steps, batch_size=batch, n_epochs=10, gamma=0.95, **common)
+    # the buffer holds the whole run (strokes are expensive, none is worth forgetting) and stays small to checkpoint
     return sb3.SAC(
-        learning_starts=min(200, cfg.total_timesteps // 4), buffer_size=50_000, gamma=0.95, **common
+        learning_starts=min(200, cfg.total_timesteps // 4),
+        buffer_size=max(1_000, min(50_000, cfg.total_timesteps)),
+        gamma=0.95,
+        **common,
     )
 
 
@@ -245,7 +249,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False):
     # "module:EnvId" makes gymnasium import hairbrush_env (which registers the envs) inside each worker process;
     # SB3 starts SubprocVecEnv workers with forkserver, which does not inherit the parent's registry.
     env_id = f"hairbrush_env:{cfg.env}"
-    kwargs = _env_kwargs(cfg)
+    kwargs = _env_kwargs(cfg) | {"state_cache_dir": str(out / "state_cache")}  # workers shake each state once
     wigs = training_wigs(cfg.wig)
     # a resumed segment seeds its workers from the step count: new episodes, not a replay of the first segment's
     venv = _vec_env(

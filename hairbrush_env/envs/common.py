@@ -147,7 +147,9 @@ class BrushEnvBase(gym.Env):
         reward: RewardConfig | None,
         load_cell_noise: float,
         wig_seeds: Sequence[int] | None = None,
+        state_cache_dir: str | None = None,
     ) -> None:
+        from ..hair import StateCache
         from ..scene import BrushingSim  # deferred: importing the package must stay cheap
 
         if obs_mode not in OBS_MODES:
@@ -173,8 +175,12 @@ class BrushEnvBase(gym.Env):
         self.detangled_fraction = float(detangled_fraction)
         self.reward_config = reward if reward is not None else RewardConfig()
         # one compiled scene per wig (built once; reset picks the episode's wig, so switching costs nothing)
+        # a cache directory lets processes (vectorized workers, resumed runs) share the shaken states
+        cache = StateCache(directory=state_cache_dir)
         self.sims = [
-            BrushingSim(make_scene_config(w, width=width, height=height, load_cell_noise=load_cell_noise))
+            BrushingSim(
+                make_scene_config(w, width=width, height=height, load_cell_noise=load_cell_noise), cache=cache
+            )
             for w in wigs
         ]
         self.sim = self.sims[0]

@@ -56,9 +56,8 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
 
     ## Arguments
     `wig`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `wig_seeds`,
-    `detangled_fraction`,
-    `reward`, `load_cell_noise` as in `HairBrush-v0`, plus `max_vertical_speed` (0.2 m/s) and `max_depth_speed`
-    (0.05 m/s).
+    `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in `HairBrush-v0`, plus
+    `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
 
     ## Version History
     - v0: initial release.
@@ -77,6 +76,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         max_depth_speed: float = 0.05,
         n_wig_states: int = 4,
         wig_seeds: Sequence[int] | None = None,
+        state_cache_dir: str | None = None,
         detangled_fraction: float = 0.05,
         reward: RewardConfig | None = None,
         load_cell_noise: float = 0.02,
@@ -93,6 +93,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             max_depth_speed=max_depth_speed,
             n_wig_states=n_wig_states,
             wig_seeds=wig_seeds,
+            state_cache_dir=state_cache_dir,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,
@@ -106,6 +107,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             force_threshold=force_threshold,
             n_wig_states=n_wig_states,
             wig_seeds=wig_seeds,
+            state_cache_dir=state_cache_dir,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,

@@ -110,6 +110,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `trace_length` | auto | samples kept in `force_trace` (a full stroke at 10 Hz) |
     | `n_wig_states` | 4 | number of distinct pre-brushed states the seed chooses from (shake seeds 0 … n − 1) |
     | `wig_seeds` | `None` | the shake seeds to choose from instead (e.g. states never used in training) |
+    | `state_cache_dir` | `None` | directory where shaken states are kept and shared between processes |
     | `detangled_fraction` | 0.05 | termination level of the entanglement |
     | `reward` | `RewardConfig()` | reward weights |
     | `load_cell_noise` | 0.02 | load-cell noise s.d. [N] |
@@ -137,6 +138,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         trace_length: int | None = None,
         n_wig_states: int = 4,
         wig_seeds: Sequence[int] | None = None,
+        state_cache_dir: str | None = None,
         detangled_fraction: float = 0.05,
         reward: RewardConfig | None = None,
         load_cell_noise: float = 0.02,
@@ -155,6 +157,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             trace_length=trace_length,
             n_wig_states=n_wig_states,
             wig_seeds=wig_seeds,
+            state_cache_dir=state_cache_dir,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,
@@ -168,6 +171,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             force_threshold=force_threshold,
             n_wig_states=n_wig_states,
             wig_seeds=wig_seeds,
+            state_cache_dir=state_cache_dir,
             detangled_fraction=detangled_fraction,
             reward=reward,
             load_cell_noise=load_cell_noise,
