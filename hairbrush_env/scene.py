@@ -500,6 +500,11 @@ class BrushingSim:
         """World position of the brush TCP (mid-bristle)."""
         return self.data.site_xpos[self._tcp_site].copy()
 
+    def brush_below_hair(self) -> bool:
+        """Whether the whole brush (with the contact reach) is below every strand: a pull has gone through."""
+        clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
+        return bool(float(self.hair_curve_array()[..., 2].min()) > self.brush_position()[2] + clear)
+
     def entanglement(self) -> float:
         """``Σ |open Lk|`` over the entwined pairs (ground truth, :class:`hairbrush_env.hair.Entanglement`)."""
         return self.entanglement_meter(self.data)

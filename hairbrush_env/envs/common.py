@@ -15,6 +15,8 @@ from gymnasium import spaces
 PAIN_THRESHOLD_N = 10.0
 #: Rated capacity of the simulated load cell [N]: readings saturate here, which bounds the observation spaces.
 LOAD_CELL_CAPACITY_N = 100.0
+#: Thesis eq. 3.4: brushing is finished when consecutive full strokes' maximum forces differ by less than this [N].
+FINISH_FORCE_TOLERANCE_N = 0.4
 #: Upper bound of counters/clocks in observations (episodes are far shorter).
 MAX_COUNT = 10_000.0
 

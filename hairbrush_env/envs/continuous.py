@@ -11,6 +11,7 @@ from gymnasium import spaces
 from gymnasium.utils import EzPickle
 
 from .common import (
+    FINISH_FORCE_TOLERANCE_N,
     LOAD_CELL_CAPACITY_N,
     MAX_COUNT,
     PAIN_THRESHOLD_N,
@@ -21,6 +22,10 @@ from .common import (
 )
 
 CONTROL_DT = 0.1  # 10 Hz, the load cell's rate
+#: A pass counts as brushing while the brush TCP is within this of the stroke depth (``BrushingSim.depth_x``) [m].
+PASS_DEPTH_TOLERANCE = 0.02
+#: A full pass starts within this of the full stroke's start height (``BrushingSim.start_height(1)``) [m].
+PASS_START_TOLERANCE = 0.01
 
 
 class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
@@ -44,14 +49,23 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     ## Rewards
     As `HairBrush-v0`: `reward_progress + reward_time + reward_pain + reward_finish`, with the time cost per
     control step (0.1 s), the pain penalty on the brushing force above F_T, no repositioning overhead, and the
-    finish bonus when the wig is detangled (this env has no stroke-level finish rule).
+    finish bonus when the episode ends by termination.
+
+    **Full passes and the finish rule.** A *full pass* is the velocity-level full stroke: the brush inside the hair
+    (TCP within `PASS_DEPTH_TOLERANCE` of the stroke depth) from the full stroke's start height (within
+    `PASS_START_TOLERANCE`) straight down until the whole brush is below every strand, never moving up or out on the
+    way. Thesis eq. 3.4 ends the episode when two consecutive full passes read maximum forces within 0.4 N. Without
+    it the task could only end by detangling to `detangled_fraction`, which brushing seldom reaches, so an agent
+    that brushes well and one that never touches the hair paid the same time cost for the whole episode, and any
+    brushing that tangled a little or hurt scored below doing nothing: the stalling hole (issue #12).
 
     ## Starting State
     A pre-brushed wig (one of `n_wig_states` cached states picked by the seed); brush above the hair at the
     stroke depth.
 
     ## Episode End
-    Termination when the entanglement falls to `detangled_fraction` of its initial value; truncation after
+    Termination when the entanglement falls to `detangled_fraction` of its initial value or the finish rule holds
+    (`info["finished_rule"]`); truncation after
     `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
 
     ## Arguments
@@ -129,11 +143,15 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         self._force = np.zeros(3)
         self._t = 0.0
         self._max_force = 0.0
+        self._pass_fmax: float | None = None  # the running full pass's maximum force (None: no pass running)
+        self._prev_pass_fmax: float | None = None
+        self._passes = 0
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         self._reset_sim(seed)
         self._t, self._max_force = 0.0, 0.0
         self._force = np.zeros(3)
+        self._pass_fmax, self._prev_pass_fmax, self._passes = None, None, 0
         return self._obs(), self._info(False)
 
     def step(self, action):
@@ -152,7 +170,9 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         self._max_force = max(self._max_force, brushing)
         self._pain += int(brushing >= self.force_threshold)
         e_now = self.sim.entanglement()
-        terminated = e_now <= self.detangled_fraction * self._e0
+        finished = self._track_pass(brushing, v_z)
+        detangled = e_now <= self.detangled_fraction * self._e0
+        terminated = finished or detangled
         terms = self.reward_config.terms(
             e_prev=self._e,
             e_now=e_now,
@@ -164,8 +184,35 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         )
         self._e = e_now
         info = self._info(False)
-        info.update(terms, brushing_force=brushing, force_samples=[brushing], force_times=[self._t])
+        info.update(
+            terms,
+            brushing_force=brushing,
+            force_samples=[brushing],
+            force_times=[self._t],
+            finished_rule=finished,
+            detangled=detangled,
+        )
         return self._obs(), float(sum(terms.values())), bool(terminated), False, info
+
+    def _track_pass(self, force: float, v_z: float) -> bool:
+        """Update the running full pass with this control step; True when eq. 3.4 finishes the episode."""
+        sim = self.sim
+        p = sim.brush_position()
+        inside = p[0] >= sim.depth_x - PASS_DEPTH_TOLERANCE
+        if self._pass_fmax is None:
+            if inside and p[2] >= sim.start_height(1.0) - PASS_START_TOLERANCE:
+                self._pass_fmax = force
+            return False
+        if not inside or v_z > 0.0:
+            self._pass_fmax = None  # left the hair or went back up: not a full pass
+            return False
+        self._pass_fmax = max(self._pass_fmax, force)
+        if not sim.brush_below_hair():
+            return False
+        f, prev = self._pass_fmax, self._prev_pass_fmax
+        self._pass_fmax, self._prev_pass_fmax = None, f
+        self._passes += 1
+        return prev is not None and abs(f - prev) < FINISH_FORCE_TOLERANCE_N
 
     def _obs(self) -> dict[str, np.ndarray]:
         obs: dict[str, np.ndarray] = {}
@@ -185,4 +232,5 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             **self._common_info(diverged),
             "max_force": float(self._max_force),
             "sim_time": float(self._t),
+            "full_passes": int(self._passes),
         }

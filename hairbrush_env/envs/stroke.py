@@ -11,6 +11,7 @@ from gymnasium import spaces
 from gymnasium.utils import EzPickle
 
 from .common import (
+    FINISH_FORCE_TOLERANCE_N,
     LOAD_CELL_CAPACITY_N,
     MAX_COUNT,
     PAIN_THRESHOLD_N,
@@ -273,7 +274,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         finished = (
             self._prev_fmax is not None
             and not result.aborted
-            and abs(f_max - self._prev_fmax) < 0.4
+            and abs(f_max - self._prev_fmax) < FINISH_FORCE_TOLERANCE_N
             and b_l >= 1.0 - 1e-9
         )
         detangled = e_now <= self.detangled_fraction * self._e0

@@ -83,3 +83,69 @@ def test_render_and_close(small_wig):
     assert frame.shape == obs["image"].shape == (120, 160, 3)
     e.close()
     assert e.unwrapped.sim._renderer is None
+
+
+def _brush_down_through(env) -> np.ndarray:
+    """A scripted brusher: full passes (in at the top, straight down through the hair, out, back up), as
+    HairBrush-v0's full stroke does at the velocity level; returns the next action."""
+    sim = env.unwrapped.sim
+    p = sim.brush_position()
+    state = env.unwrapped.__dict__.setdefault("_script", {"phase": "up"})
+    top = sim.start_height(1.0)
+    if state["phase"] == "up":  # out of the hair, up to the full stroke's start height
+        if p[0] > sim.retract_x + 0.005:
+            return np.array([0.0, -1.0], np.float32)
+        if p[2] < top - 0.002:
+            return np.array([1.0, 0.0], np.float32)
+        state["phase"] = "in"
+    if state["phase"] == "in":
+        if p[0] < sim.depth_x - 0.002:
+            return np.array([0.0, 1.0], np.float32)
+        state["phase"] = "down"
+    if state["phase"] == "down":
+        if not sim.brush_below_hair():
+            return np.array([-0.5, 0.0], np.float32)  # 0.1 m/s, HairBrush-v0's stroke speed
+        state["phase"] = "up"
+    return np.array([0.0, -1.0], np.float32)
+
+
+def _episode(env, policy, seed: int = 0) -> tuple[float, int, dict]:
+    env.reset(seed=seed)
+    env.unwrapped.__dict__.pop("_script", None)
+    total, steps, done, info = 0.0, 0, False, {}
+    while not done:
+        _, r, term, trunc, info = env.step(policy(env))
+        total, steps = total + r, steps + 1
+        done = term or trunc
+    return total, steps, info
+
+
+def test_full_passes_finish_by_eq_3_4_and_brushing_beats_doing_nothing(small_wig):
+    """The stalling hole (issue #12): without a finish rule a brusher and an idler paid the same time cost for the
+    whole episode and brushing could only lose. Full passes now end the episode by eq. 3.4 with the bonus."""
+    env = gym.make("HairBrushContinuous-v0", wig=small_wig, max_episode_steps=300)
+    try:
+        brushed, steps, info = _episode(env, _brush_down_through)
+        print(f"brushed: return {brushed:.2f} in {steps} steps, {info['full_passes']} full passes")
+        assert info["finished_rule"] and info["full_passes"] >= 2 and info["reward_finish"] == 5.0
+        idle, idle_steps, idle_info = _episode(env, lambda e: np.zeros(2, np.float32))
+        print(f"idle: return {idle:.2f} in {idle_steps} steps")
+        assert idle_steps == 300 and idle_info["full_passes"] == 0 and not idle_info["finished_rule"]
+        assert idle == pytest.approx(-0.05 * 0.1 * 300, abs=0.5)  # time cost, ~no progress
+        assert brushed > idle + 5.0
+    finally:
+        env.close()
+
+
+@pytest.mark.slow
+def test_full_passes_finish_the_curly_preset_and_beat_doing_nothing():
+    """The same on the default curly wig (60 s episodes): idle pays the whole time cost, brushing finishes."""
+    env = gym.make("HairBrushContinuous-v0", wig="curly")
+    try:
+        brushed, steps, info = _episode(env, _brush_down_through)
+        print(f"curly brushed: return {brushed:.2f} in {steps} steps, {info['full_passes']} full passes, "
+              f"entanglement {info['entanglement']:.2f} / {info['entanglement_initial']:.2f}")  # fmt: skip
+        assert info["finished_rule"] and brushed > -0.05 * 60.0 + 5.0
+        assert info["entanglement"] < info["entanglement_initial"]
+    finally:
+        env.close()
