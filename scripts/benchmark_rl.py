@@ -25,7 +25,7 @@ def main() -> None:
     )
     p.add_argument("--algo", default="ppo", choices=["ppo", "sac"])
     p.add_argument("--steps", type=int, default=512)
-    p.add_argument("--wig", default="curly")
+    p.add_argument("--wig", default="curly", help="training wigs ('train' or names; default curly)")
     a = p.parse_args()
     rows = []
     for n_envs, vec in ((1, "dummy"), (2, "subproc")):
@@ -36,7 +36,7 @@ def main() -> None:
             n_envs=n_envs,
             vec_env=vec,
             wig=a.wig,
-            eval_freq=10 * a.steps,  # no evaluation inside the timed run
+            eval_episodes=0,  # no evaluation inside the timed run
             checkpoint_freq=10 * a.steps,
             progress_bar=False,
         )
