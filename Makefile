@@ -21,12 +21,13 @@ $(VENV)/.installed: pyproject.toml | $(BIN)/python
 # rerun recording, a video, a JSON summary and a plot into $(OUT).
 run: $(VENV)/.installed
 	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush rollout --env HairBrush-v0 --wig curly --policy sigmoid \
-		--episodes 1 --max-steps 10 --seed 0 --rerun $(OUT)/rollout.rrd --video $(OUT)/rollout.mp4 \
+		--episodes 1 --max-steps 10 --seed 0 --rerun $(OUT)/rollout.rrd --video $(OUT)/rollout.webm \
 		--json $(OUT)/rollout.json --plot $(OUT)/rollout.png
 
 # Default suite (< 10 min on 2 cores); long physics runs are marked `slow`.
 test: $(VENV)/.installed
 	$(BIN)/ruff check .
+	$(BIN)/lint-imports
 	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/python -m pytest -n 2 -q
 
 test-all: $(VENV)/.installed

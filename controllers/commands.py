@@ -7,6 +7,7 @@ import argparse
 from pathlib import Path
 
 from hairbrush_env.commands import add_webcam_args
+from hairbrush_env.commands.checks import count, integer, output_dir, wig_names
 
 
 def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
@@ -16,8 +17,8 @@ def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
 
     from .vision_calibration import plot_calibration, rank_correlation, render_rows, rows_to_csv
 
-    presets = None if args.wigs == "all" else [w.strip() for w in args.wigs.split(",") if w.strip()]
-    seeds = [int(s) for s in args.seeds.split(",")]
+    presets = args.wigs
+    seeds = args.seeds
     try:
         rows = render_rows(
             presets,
@@ -61,16 +62,26 @@ def _cmd_vision_calibrate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _seed_list(text: str) -> list[int]:
+    return [integer(0)(v.strip()) for v in text.split(",") if v.strip()]
+
+
 def register_vision(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("vision", help="vision curliness R_c (thesis eq. 3.5): calibration on rendered wigs")
     vsub = p.add_subparsers(dest="action", required=True, metavar="ACTION")
     cal = vsub.add_parser(
         "calibrate", help="R_c vs true R/P for every preset (thesis Fig. 3.4): PNG, CSV, JSON"
     )
-    cal.add_argument("--wigs", default="all", help="comma-separated presets or 'all'")
-    cal.add_argument("--seeds", default="0,1,2", help="pre-brushed states per wig (comma-separated)")
-    cal.add_argument("--jitters", type=int, default=3, help="camera placements per state (first is nominal)")
+    cal.add_argument(
+        "--wigs", type=wig_names(allow_held_out=False), default="all", help="comma-separated presets or 'all'"
+    )
+    cal.add_argument(
+        "--seeds", type=_seed_list, default="0,1,2", help="pre-brushed states per wig (comma-separated)"
+    )
+    cal.add_argument(
+        "--jitters", type=count, default=3, help="camera placements per state (first is nominal)"
+    )
     add_webcam_args(cal)
-    cal.add_argument("--out", default="runs/vision")
-    cal.add_argument("--quiet", action="store_true")
+    cal.add_argument("--out", type=output_dir, default="runs/vision", help="output directory")
+    cal.add_argument("--quiet", action="store_true", help="no progress bar")
     cal.set_defaults(func=_cmd_vision_calibrate)

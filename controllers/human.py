@@ -17,6 +17,8 @@ from typing import Any
 
 import numpy as np
 
+from hairbrush_env.constants import PAIN_THRESHOLD_N
+
 
 class HumanPolicy:
     """Short strokes from the free ends upward, re-brushing a section while its force stays high."""
@@ -34,7 +36,7 @@ class HumanPolicy:
             raise ValueError(f"step: must be in (0, 1], got {step!r}")
         if comfort_force is None:
             # half the pain threshold: the level at which Algorithm 1 stops lengthening strokes
-            comfort_force = 0.5 * float(getattr(base, "force_threshold", 10.0))
+            comfort_force = 0.5 * float(getattr(base, "force_threshold", PAIN_THRESHOLD_N))
         if not (math.isfinite(comfort_force) and comfort_force > 0.0):
             raise ValueError(f"comfort_force: must be a positive finite number, got {comfort_force!r}")
         if not (isinstance(max_repeats, int) and max_repeats >= 0):

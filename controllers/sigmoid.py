@@ -14,15 +14,15 @@ from typing import Any
 
 import numpy as np
 
-from hairbrush_env.commands import WEBCAM_SIZE
+from hairbrush_env.constants import PAIN_THRESHOLD_N, WEBCAM_SIZE
 
 from .vision import curliness
 
-#: Smallest webcam image height at which R_c ranks the curled presets (README "Vision curliness").
+#: Smallest webcam image height at which R_c ranks the curled presets (docs/policies.md, "Vision curliness").
 MIN_IMAGE_HEIGHT = WEBCAM_SIZE[1]
 #: Steepness fitted on real wigs in the thesis (Fig. 3.9).
 THESIS_K = 8.5
-#: Steepness fitted in simulation by ``scripts/fit_sigmoid.py`` (see README); the default of the policy.
+#: Steepness fitted in simulation by ``scripts/fit_sigmoid.py`` (see docs/policies.md); the default of the policy.
 DEFAULT_K = THESIS_K
 
 
@@ -44,7 +44,7 @@ class ClosedLoopConfig:
     k: float = DEFAULT_K  # eq. 3.3 steepness
     c: float = 0.5  # eq. 3.3 midpoint
     increment: float = 0.2  # b_i: length added per stroke when the force is well below F_T
-    force_threshold: float = 10.0  # F_T [N]
+    force_threshold: float = PAIN_THRESHOLD_N  # F_T [N]
     finish_tolerance: float = 0.4  # eq. 3.4 [N]
     min_brush_length: float = 0.02  # floor so a hard knot cannot drive b_l to zero
 
@@ -85,7 +85,9 @@ class SigmoidPolicy:
         if not hasattr(base, "brush_length_to_action"):
             raise ValueError(f"env: {type(base).__name__} is not a stroke-level env (HairBrush-v0)")
         self._env = base
-        self.config = config or ClosedLoopConfig(force_threshold=getattr(base, "force_threshold", 10.0))
+        self.config = config or ClosedLoopConfig(
+            force_threshold=getattr(base, "force_threshold", PAIN_THRESHOLD_N)
+        )
         self.curliness_hint = curliness_hint
         #: Algorithm 1's inner loop stops a stroke at F_T.
         self.abort_force: float | None = self.config.force_threshold
@@ -102,7 +104,7 @@ class SigmoidPolicy:
             if image.shape[0] < MIN_IMAGE_HEIGHT:
                 warnings.warn(
                     f"SigmoidPolicy: a {image.shape[1]}x{image.shape[0]} webcam image blurs tight coils and "
-                    "lowers their R_c (README, 'Vision curliness'); make the env with "
+                    "lowers their R_c (docs/policies.md, 'Vision curliness'); make the env with "
                     f"width={WEBCAM_SIZE[0]}, height={WEBCAM_SIZE[1]}",
                     stacklevel=3,
                 )

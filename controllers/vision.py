@@ -17,7 +17,7 @@ x = R cos(2πz/P), which travels 4R sideways per pitch P, so the unclipped ratio
 R_c = min(4 R/P, 1). R_c therefore tracks R/P only up to R/P ≈ 1/4: every curlier helix reads R_c = 1, and eq. 3.5
 cannot rank such wigs among themselves. :func:`gradient_ratio` returns the unclipped value, which keeps ranking
 them as long as the image resolves the curls (``tests/controllers/test_vision.py`` checks the 4R/P law on drawn
-curves; README "Vision curliness" has the measurement on rendered wigs).
+curves; docs/policies.md, "Vision curliness", has the measurement on rendered wigs).
 """
 
 from __future__ import annotations

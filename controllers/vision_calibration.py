@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 from scipy.stats import spearmanr
 
-from hairbrush_env.commands import WEBCAM_SIZE
+from hairbrush_env.constants import WEBCAM_SIZE
 
 from .vision import gradient_ratio
 
@@ -56,7 +56,7 @@ def render_rows(
 ) -> list[dict]:
     """Render and measure; one row per (wig, seed, jitter, condition) with ``rc``, ``ratio`` and the true ``rp``.
 
-    ``width`` × ``height`` is the webcam resolution: at 160×120 the tightest coils blur into tubes (README).
+    ``width`` × ``height`` is the webcam resolution: at 160×120 the tightest coils blur into tubes (docs/policies.md).
     """
     import mujoco
     from tqdm import tqdm

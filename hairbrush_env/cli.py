@@ -32,7 +32,7 @@ BUILTIN_COMMANDS = ("topology", "rollout", "compare", "helix", "rodpile")
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = HelpfulParser(
         prog="hairbrush",
         description="Robotic hair brushing in MuJoCo and the physics/topology toolkit behind it.",
     )
@@ -44,11 +44,38 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class DefaultsFormatter(argparse.ArgumentDefaultsHelpFormatter):
+    """Shows an option's default unless it has none (None, a flag's False) or its help already names it."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        no_default = action.default is None or action.default is False or action.default == argparse.SUPPRESS
+        if no_default or "default" in text:
+            return text
+        return super()._get_help_string(action) or text
+
+
+class HelpfulParser(argparse.ArgumentParser):
+    """Every (sub)command shows each option's default in ``--help``."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("formatter_class", DefaultsFormatter)
+        super().__init__(*args, **kwargs)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
-    # Headless rendering default for CLI runs; the library itself never forces a GL backend.
+    from .commands.checks import UsageError
+
+    # Headless rendering default for CLI runs (the package picks EGL too when there is no display).
     os.environ.setdefault("MUJOCO_GL", "egl")
-    args = build_parser().parse_args(argv)
-    return int(args.func(args) or 0)
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args.func(args) or 0)
+    except UsageError as exc:  # found by a handler before it simulated: one line, exit 2, as argparse does
+        prog = f"{parser.prog} {args.command}" + (f" {args.action}" if getattr(args, "action", None) else "")
+        print(f"{prog}: error: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

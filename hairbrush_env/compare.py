@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from .constants import PAIN_THRESHOLD_N
 from .io import read_csv_rows, write_csv_rows, write_text
 
 COLUMNS = [
@@ -208,7 +209,7 @@ def plot_grid(rows: Sequence[dict[str, Any]], force_png: str | Path, time_png: s
             s = np.array([e[key][1] for e in es])
             ax.errorbar(x, m, yerr=s, fmt="o-", color=PALETTE[i % len(PALETTE)], capsize=3, label=pol)
         if key == "max_force":
-            ax.axhline(10.0, color="k", ls="--", lw=1, label="pain threshold F_T")
+            ax.axhline(PAIN_THRESHOLD_N, color="k", ls="--", lw=1, label="pain threshold F_T")
         ax.set(xlabel="curliness R/P", ylabel=label, title=f"{label.split(' [')[0]} vs curliness")
         ax.legend()
         save_figure(fig, path)

@@ -85,8 +85,7 @@ import numpy as np
 
 from . import collision, rods
 from .topology import linking_number
-from .topology._kernels import min_segment_distance
-from .topology.proximity import close_pair_proximity
+from .topology.proximity import close_pair_proximity, polyline_distance
 
 __all__ = [
     "CROSS_LINK_THRESHOLD",
@@ -614,7 +613,7 @@ def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
                     or np.linalg.norm(axes[owner[a]] - axes[owner[b]]) > 2 * radius + 3 * need
                 ):
                     continue  # far groups cannot touch or link
-                dmin = min(dmin, float(min_segment_distance(curves[a], curves[b])))
+                dmin = min(dmin, polyline_distance(curves[a], curves[b]))
                 if wig.curliness > 0:
                     lkmax = max(lkmax, abs(linking_number(curves[a], curves[b], closed=False)))
         if dmin >= need and lkmax < 0.4:
@@ -798,7 +797,7 @@ def min_distance_matrix(curves: Sequence[np.ndarray]) -> np.ndarray:
     out = np.full((n, n), np.inf)
     for a in range(n):
         for b in range(a + 1, n):
-            out[a, b] = out[b, a] = float(min_segment_distance(curves[a], curves[b]))
+            out[a, b] = out[b, a] = polyline_distance(curves[a], curves[b])
     return out
 
 

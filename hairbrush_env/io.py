@@ -62,6 +62,16 @@ def write_csv_rows(
     return write_text(path, buf.getvalue())
 
 
+def csv_text(header: Sequence[str], rows: Iterable[Sequence[Any]]) -> str:
+    """CSV text of ``rows`` under ``header``, floats to 6 significant digits (for :func:`write_text`)."""
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    writer.writerow(header)
+    for row in rows:
+        writer.writerow([f"{v:.6g}" if isinstance(v, float) else v for v in row])
+    return buf.getvalue()
+
+
 def read_csv_rows(
     path: str | os.PathLike[str],
     *,

@@ -36,6 +36,7 @@ from . import hair as hairmod
 from .arm_control import CartesianController, plan_stroke
 from .assets import load_part
 from .brush import TINE_PREFIX, BrushConfig, brush_spec, get_brush
+from .constants import PAIN_THRESHOLD_N
 from .rods import configure_rod_options
 from .sensors import LoadCell, LoadCellConfig
 
@@ -51,8 +52,8 @@ __all__ = [
     "wave1_scene",
 ]
 
-PAIN_THRESHOLD = 10.0
-"""``F_T`` [N] (thesis §3.5: pain threshold ≈ 10 N)."""
+PAIN_THRESHOLD = PAIN_THRESHOLD_N
+"""``F_T`` [N] (thesis §3.5: pain threshold ≈ 10 N; :data:`hairbrush_env.constants.PAIN_THRESHOLD_N`)."""
 
 BRUSH_TCP = "arm/brush/brush_tcp"
 HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
@@ -488,7 +489,7 @@ class BrushingSim:
         The normalized brush length ``b_l`` is a fraction of this span, so ``b_l = 1`` is the longest stroke the
         brush can make. Measured against the whole hanging length instead, every ``b_l`` above
         ``1 − clearance/L`` starts at the same clamped height: for tight_curl (L ≈ 6.4 cm) b_l = 0.67 and 1 began
-        only 2–7 mm apart and their forces differed 2× by where the bristles caught a curl (README).
+        only 2–7 mm apart and their forces differed 2× by where the bristles caught a curl (docs/wigs.md).
         """
         return max(self.top_z - self.hair_bottom, 0.0)
 

@@ -11,6 +11,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from .constants import PAIN_THRESHOLD_N
 from .io import atomic_path
 
 # Distinct, colour-blind-friendly colours (Okabe–Ito) for strands and policies.
@@ -152,10 +153,20 @@ class EpisodeRecorder:
         self._ctx.__exit__(None, None, None)
 
 
+#: Codec of each video container OpenCV writes here. WebM/VP9 plays in every current browser; OpenCV's pip wheels
+#: have no H.264 encoder, and their MP4 codec (``mp4v``, MPEG-4 Part 2) plays in video players but not browsers.
+VIDEO_CODECS = {".webm": "VP90", ".mp4": "mp4v"}
+
+
 class VideoWriter:
-    """MP4 video of webcam frames (OpenCV, ``mp4v``), written atomically on :meth:`close`."""
+    """Video of webcam frames (OpenCV; WebM/VP9 or MP4/mp4v by the file's suffix), written atomically on
+    :meth:`close`."""
 
     def __init__(self, path: str | os.PathLike[str], *, fps: float = 10.0) -> None:
+        suffix = os.path.splitext(os.fspath(path))[1].lower()
+        if suffix not in VIDEO_CODECS:
+            raise ValueError(f"path: expected a {' or '.join(VIDEO_CODECS)} file, got {os.fspath(path)!r}")
+        self._codec = VIDEO_CODECS[suffix]
         self._ctx = atomic_path(path)
         self._tmp = self._ctx.__enter__()
         self._fps = fps
@@ -166,7 +177,8 @@ class VideoWriter:
 
         if self._writer is None:
             h, w = img.shape[:2]
-            self._writer = cv2.VideoWriter(str(self._tmp), cv2.VideoWriter_fourcc(*"mp4v"), self._fps, (w, h))
+            fourcc = cv2.VideoWriter_fourcc(*self._codec)
+            self._writer = cv2.VideoWriter(str(self._tmp), fourcc, self._fps, (w, h))
         self._writer.write(cv2.cvtColor(np.ascontiguousarray(img), cv2.COLOR_RGB2BGR))
 
     def close(self) -> None:
@@ -177,7 +189,7 @@ class VideoWriter:
 
 
 def plot_rollout(
-    episodes: Sequence[Mapping], path: str | os.PathLike[str], *, force_threshold: float = 10.0
+    episodes: Sequence[Mapping], path: str | os.PathLike[str], *, force_threshold: float = PAIN_THRESHOLD_N
 ) -> None:
     """Force vs episode time (10 Hz samples), max force per stroke and entanglement per stroke, one colour per
     episode (does brushing detangle? stroke 0 is the pre-brushed wig).

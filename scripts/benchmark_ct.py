@@ -5,7 +5,7 @@
 By default the rods are placed at random without overlaps (random sequential addition in a cylinder of diameter
 3 L, isotropic directions, packing fraction ``--phi``; few contacts, so recovery is higher than in real piles).
 ``--piles`` times packings from files instead (e.g. MuJoCo piles from ``hairbrush rodpile generate``). Recovery
-(both ends within 1 d, Hungarian matching) is printed for information; the validated numbers are in the README
+(both ends within 1 d, Hungarian matching) is printed for information; the validated numbers are in docs/ct.md
 and ``tests/studies/test_ct.py``.
 """
 

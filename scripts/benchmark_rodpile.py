@@ -46,10 +46,10 @@ def solver_check(path: str) -> None:
 
     import mujoco
 
-    from hairbrush_env.studies.rod_pile import SimParams, _Pile, _poses_from_endpoints, load_packing
+    from hairbrush_env.studies.rod_pile import Pile, SimParams, load_packing, poses_from_endpoints
 
     pk = load_packing(path)
-    pos, quat, length = _poses_from_endpoints(pk.endpoints)
+    pos, quat, length = poses_from_endpoints(pk.endpoints)
     sp = SimParams(length, pk.diameter, pk.container_diameter, friction=pk.meta.get("friction", 0.4))
     d = sp.diameter
     print(f"\n{path}: {pk.n_rods} rods, α = {pk.aspect_ratio:.0f}")
@@ -58,7 +58,7 @@ def solver_check(path: str) -> None:
     S = mujoco.mjtSolver
     for name, solver, iters in (("PGS 30 (used)", S.mjSOL_PGS, 30), ("PGS 10", S.mjSOL_PGS, 10),
                                 ("CG 10", S.mjSOL_CG, 10), ("Newton 5", S.mjSOL_NEWTON, 5)):  # fmt: skip
-        pile = _Pile(sp, pos, quat)
+        pile = Pile(sp, pos, quat)
         pile.model.opt.solver, pile.model.opt.iterations = solver, iters
         pile.set_drag(False)
         z0 = pile.data.xpos[pile.body_of_rod, 2].copy()
@@ -77,7 +77,7 @@ def solver_check(path: str) -> None:
         return float(np.mean(np.abs(u[:, 2]) / np.linalg.norm(u, axis=1)))
 
     for name, noslip in (("PGS 30", 0), ("PGS 30 + noslip 10", 10)):
-        pile = _Pile(sp, pos, quat)
+        pile = Pile(sp, pos, quat)
         pile.model.opt.noslip_iterations = noslip
         pile.set_drag(False)
         pile.step(1200)

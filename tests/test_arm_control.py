@@ -47,7 +47,7 @@ def test_controller_resolves_arm_chain_only(model: mujoco.MjModel) -> None:
         CartesianController(model, site="no_such_site")
 
 
-# Targets over the brushing workspace: the hair curtain is at x ≈ 0.50, z ∈ [0.60, 0.93] (see README).
+# Targets over the brushing workspace: the hair curtain is at x ≈ 0.50, z ∈ [0.60, 0.93] (see docs/wigs.md).
 TARGETS = [
     ((0.50, 0.00, 0.90), None),
     ((0.50, 0.00, 0.60), None),

@@ -41,8 +41,12 @@ def test_topology_lk_command(tmp_path, capsys):
     np.savetxt(tmp_path / "b.csv", np.column_stack([1 + np.cos(t), 0 * t, np.sin(t)]), delimiter=",")
     assert main(["topology", "lk", str(tmp_path / "a.npy"), str(tmp_path / "b.csv")]) == 0
     assert "Lk = -1.000000" in capsys.readouterr().out
-    with pytest.raises(SystemExit, match="not found"):
-        main(["topology", "lk", str(tmp_path / "missing.npy"), str(tmp_path / "b.csv")])
+    assert "warning" not in capsys.readouterr().err  # closed curves: no open-curve warning
+    np.save(tmp_path / "arc.npy", np.column_stack([np.cos(t / 2), np.sin(t / 2), 0 * t]))  # half a circle
+    assert main(["topology", "lk", str(tmp_path / "arc.npy"), str(tmp_path / "b.csv")]) == 0
+    assert "curve_a looks open" in capsys.readouterr().err and "--open" not in " ".join(sys.argv)
+    assert main(["topology", "lk", "--open", str(tmp_path / "arc.npy"), str(tmp_path / "b.csv")]) == 0
+    assert "looks open" not in capsys.readouterr().err
 
 
 def test_rodpile_summary_reports_the_bulk_away_from_the_wall(tmp_path, capsys):
@@ -108,7 +112,107 @@ def test_helix_run_and_sweep_commands(tmp_path, capsys):
     assert (tmp_path / "sw" / "sweep_P_over_r.png").stat().st_size > 10_000
     assert "kink jams" in capsys.readouterr().out
 
-    with pytest.raises(SystemExit, match="P_over_r"):
-        main(["helix", "run", "--set", "P_over_r=-1", "--out", str(tmp_path / "bad")])
-    with pytest.raises(SystemExit, match="--vary expects"):
-        main(["helix", "sweep", "--vary", "P_over_r", "--out", str(tmp_path / "bad")])
+    assert "P_over_r" in refused(
+        ["helix", "run", "--set", "P_over_r=-1", "--out", str(tmp_path / "bad")], capsys
+    )
+    assert "NAME=v1" in refused(
+        ["helix", "sweep", "--vary", "P_over_r", "--out", str(tmp_path / "bad")], capsys
+    )
+
+
+def refused(argv: list[str], capsys) -> str:
+    """Run ``hairbrush ARGV``; assert it was refused as a usage error (exit code 2, no traceback); its stderr."""
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # argparse's own errors
+        code = exc.code
+    err = capsys.readouterr().err
+    assert code == 2, (argv, code, err)
+    assert "Traceback" not in err and len(err.strip().splitlines()[-1]) < 400
+    return err.strip().splitlines()[-1]
+
+
+@pytest.fixture(scope="module")
+def bad_files(tmp_path_factory):
+    d = tmp_path_factory.mktemp("bad")
+    (d / "a_file").write_text("not a directory\n")
+    (d / "malformed.csv").write_text("1,2\n3,oops,4\n")
+    t = np.linspace(0, 2 * np.pi, 20, endpoint=False)
+    np.savetxt(d / "ring.csv", np.column_stack([np.cos(t), np.sin(t), 0 * t]), delimiter=",")
+    assert main(["rodpile", "gas", "--n-rods", "5", "--out", str(d / "tiny.npz")]) == 0
+    return d
+
+
+# (argv with {d} for the directory of bad_files, text the error line must contain: the flag and the value)
+BAD_INPUT = [
+    (["rollout", "--seed", "-1"], ["--seed", "-1"]),
+    (["rollout", "--max-steps", "0"], ["--max-steps", "'0'"]),
+    (["rollout", "--max-steps", "-3"], ["--max-steps", "-3"]),
+    (["rollout", "--episodes", "0"], ["--episodes", "'0'"]),
+    (["rollout", "--wig", "bogus"], ["--wig", "bogus", "curly"]),
+    (["rollout", "--policy", "bogus"], ["--policy", "bogus", "sigmoid"]),
+    (["rollout", "--json", "{d}/a_file/out.json"], ["--json", "a_file"]),
+    (["rollout", "--plot", "out.txt"], ["--plot", "out.txt"]),
+    (["rollout", "--width", "5"], ["--width", "'5'"]),
+    (["compare", "--policies", "full,bogus"], ["--policies", "bogus"]),
+    (["compare", "--wigs", "curly,nope"], ["--wigs", "nope"]),
+    (["compare", "--out", "{d}/a_file"], ["--out", "a_file"]),
+    (["compare", "--workers", "0"], ["--workers", "'0'"]),
+    (["strokes", "--brush-lengths", "0.5,1.5"], ["--brush-lengths", "1.5"]),
+    (["strokes", "--speeds", "0.1,-1"], ["--speeds", "-1"]),
+    (["repeat", "--brush-length", "0"], ["--brush-length", "'0'"]),
+    (["repeat", "--strokes", "0"], ["--strokes", "'0'"]),
+    (["topology", "demo", "--frames", "-3"], ["--frames", "-3"]),
+    (["topology", "lk", "{d}/malformed.csv", "{d}/ring.csv"], ["curve_a", "malformed.csv"]),
+    (["topology", "lk", "{d}/ring.csv", "{d}/missing.csv"], ["curve_b", "missing.csv"]),
+    (["census", "--seeds", "-1"], ["--seeds", "-1"]),
+    (["census", "--hairs", "1"], ["--hairs", "'1'"]),
+    (["helix", "run", "--set", "nonsense"], ["--set", "nonsense"]),
+    (["helix", "sweep", "--vary", "P_over_r"], ["--vary", "P_over_r"]),
+    (["rodpile", "generate", "--n-rods", "0"], ["--n-rods", "'0'"]),
+    (["rodpile", "fields", "{d}/tiny.npz", "--ls", "1000", "--out", "{d}/fields"], ["--ls", "1000"]),
+    (["rodpile", "fields", "{d}/missing.npz"], ["piles", "missing.npz"]),
+    (["rodpile", "segment", "{d}/ring.csv", "--diameter", "-1"], ["--diameter", "-1"]),
+    (["vision", "calibrate", "--seeds", "-1"], ["--seeds", "-1"]),
+]
+
+
+@pytest.mark.parametrize(("argv", "expected"), BAD_INPUT, ids=[" ".join(a) for a, _ in BAD_INPUT])
+def test_bad_input_is_refused_before_anything_runs(argv, expected, bad_files, capsys):
+    """One line naming the flag and its value, exit code 2, no traceback, nothing simulated (issue 23's table)."""
+    line = refused([a.replace("{d}", str(bad_files)) for a in argv], capsys)
+    for text in expected:
+        assert text in line, (text, line)
+    assert not (bad_files / "fields" / "fields.json").exists()
+
+
+def test_help_lists_wigs_and_policies_and_every_option_has_help():
+    """``--help`` names the wig presets and registered policies; every option of every command has a help text."""
+    import argparse
+
+    from hairbrush_env.cli import build_parser
+    from hairbrush_env.hair import PRESETS
+    from hairbrush_env.policies import available_policies
+
+    parser = build_parser()
+
+    def walk(p: argparse.ArgumentParser, path: str):
+        for action in p._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for name, child in action.choices.items():
+                    yield from walk(child, f"{path} {name}")
+            elif not isinstance(action, argparse._HelpAction):
+                yield path, action
+
+    missing = [
+        f"{path} {'/'.join(a.option_strings) or a.dest}"
+        for path, a in walk(parser, "hairbrush")
+        if not a.help
+    ]
+    assert missing == []
+    rollout = subprocess.run(
+        [sys.executable, "-m", "hairbrush_env.cli", "rollout", "--help"], capture_output=True, text=True
+    ).stdout
+    flat = " ".join(rollout.split())
+    assert all(w in flat for w in PRESETS) and all(p in flat for p in available_policies())
+    assert "(default: curly)" in flat and "(default: 0)" in flat

@@ -64,12 +64,12 @@ def test_shortest_policy_never_finishes():
 
 
 def test_rollout_cli_writes_everything(tmp_path):
-    out = {k: tmp_path / f"out.{k}" for k in ("rrd", "mp4", "json", "png")}
+    out = {k: tmp_path / f"out.{k}" for k in ("rrd", "webm", "json", "png")}
     code = main(
         [
             "rollout", "--wig", "straight", "--policy", "full", "--episodes", "1", "--seed", "3", "--quiet",
             "--max-steps", "2",
-            "--rerun", str(out["rrd"]), "--video", str(out["mp4"]), "--json", str(out["json"]),
+            "--rerun", str(out["rrd"]), "--video", str(out["webm"]), "--json", str(out["json"]),
             "--plot", str(out["png"]),
         ]
     )  # fmt: skip
@@ -83,5 +83,13 @@ def test_rollout_cli_writes_everything(tmp_path):
     assert first["times"][1] - first["times"][0] == pytest.approx(0.1)
     for path in out.values():
         assert path.stat().st_size > 1000, path
-    with pytest.raises(SystemExit, match="unknown policy"):
+    import cv2
+
+    video = cv2.VideoCapture(str(out["webm"]))  # VP9 in WebM: a format browsers play
+    codec = int(video.get(cv2.CAP_PROP_FOURCC)).to_bytes(4, "little").decode()
+    n_frames, (ok, frame) = int(video.get(cv2.CAP_PROP_FRAME_COUNT)), video.read()
+    video.release()
+    assert codec.lower() in ("vp90", "vp09") and ok and frame.std() > 1.0, (codec, n_frames)
+    with pytest.raises(SystemExit) as exc:
         main(["rollout", "--policy", "nope", "--quiet"])
+    assert exc.value.code == 2

@@ -5,29 +5,16 @@ from __future__ import annotations
 import argparse
 
 from . import add_webcam_args
-
-
-def _wig_names(text: str) -> list[str]:
-    """Comma-separated wig names, ``all`` for every preset (straightest first), or ``held_out`` for RL's held-out
-    wigs (``hair.HELD_OUT_WIGS``, brushed from the held-out pre-brushed states)."""
-    from ..hair import HELD_OUT_WIGS, PRESETS
-
-    if text == "all":
-        return list(PRESETS)
-    if text == "held_out":
-        return list(HELD_OUT_WIGS)
-    return [w.strip() for w in text.split(",") if w.strip()]
+from .checks import count, number, number_list, output_dir, policy_names, positive, seed, wig_names
 
 
 def _cmd_compare(args: argparse.Namespace) -> int:
     from ..compare import run_grid, summary_markdown
 
-    wigs = _wig_names(args.wigs)
-    policies = [p.strip() for p in args.policies.split(",") if p.strip()]
     try:
         rows = run_grid(
-            wigs,
-            policies,
+            args.wigs,
+            args.policies,
             episodes=args.episodes,
             seed=args.seed,
             out=args.out,
@@ -48,35 +35,36 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument(
         "--wigs",
+        type=wig_names(),
         default="all",
-        help="comma-separated wig names, 'all' presets (default) or 'held_out' (RL's test wigs)",
+        help="comma-separated wig names, 'all' presets or 'held_out' (RL's test wigs)",
     )
     p.add_argument(
-        "--policies", default="sigmoid,naive,full", help="comma-separated policy names or sb3:PATH"
+        "--policies",
+        type=policy_names,
+        default="sigmoid,naive,full",
+        help="comma-separated policy names or sb3:DIR",
     )
-    p.add_argument("--episodes", type=int, default=3, help="episodes per (wig, policy)")
-    p.add_argument("--seed", type=int, default=0, help="episode k uses seed S + k for every policy")
-    p.add_argument("--out", default="runs/compare", help="output directory (resumes an interrupted grid)")
-    p.add_argument("--workers", type=int, default=1, help="episodes run in this many processes")
+    p.add_argument("--episodes", type=count, default=3, help="episodes per (wig, policy)")
+    p.add_argument("--seed", type=seed, default=0, help="episode k uses seed S + k for every policy")
+    p.add_argument(
+        "--out",
+        type=output_dir,
+        default="runs/compare",
+        help="output directory (resumes an interrupted grid)",
+    )
+    p.add_argument("--workers", type=count, default=1, help="episodes run in this many processes")
     add_webcam_args(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_compare)
 
 
-def _floats(text: str) -> list[float]:
-    try:
-        return [float(v) for v in text.split(",") if v.strip()]
-    except ValueError as exc:
-        raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}") from exc
-
-
 def _cmd_strokes(args: argparse.Namespace) -> int:
     from ..stroke_study import measure_strokes, summary_markdown
 
-    wigs = _wig_names(args.wigs)
     try:
         rows = measure_strokes(
-            wigs,
+            args.wigs,
             brush_lengths=args.brush_lengths,
             speeds=args.speeds,
             seeds=range(args.seed, args.seed + args.seeds),
@@ -95,14 +83,23 @@ def _add_strokes(sub: argparse._SubParsersAction) -> None:
         "strokes",
         help="max force of single strokes vs curliness, brush length and speed (thesis Figs 3.7, 3.8)",
     )
-    p.add_argument("--wigs", default="straight,curly,coily", help="comma-separated preset names, or 'all'")
     p.add_argument(
-        "--brush-lengths", type=_floats, default=[1.0], help="normalized start heights b_l, e.g. 0.33,0.67,1"
+        "--wigs", type=wig_names(), default="straight,curly,coily", help="comma-separated wig names, or 'all'"
     )
-    p.add_argument("--speeds", type=_floats, default=[0.1], help="pull speeds [m/s], e.g. 0.05,0.1,0.2")
-    p.add_argument("--seeds", type=int, default=3, help="repetitions (pre-brushed wigs S, S+1, ...)")
-    p.add_argument("--seed", type=int, default=0, help="first seed S")
-    p.add_argument("--out", default="runs/strokes", help="output directory (resumes an interrupted run)")
+    p.add_argument(
+        "--brush-lengths",
+        type=number_list(number(0.0, exclusive=True, maximum=1.0)),
+        default="1",
+        help="normalized start heights b_l in (0, 1], e.g. 0.33,0.67,1",
+    )
+    p.add_argument(
+        "--speeds", type=number_list(positive), default="0.1", help="pull speeds [m/s], e.g. 0.05,0.1,0.2"
+    )
+    p.add_argument("--seeds", type=count, default=3, help="repetitions (pre-brushed wigs S, S+1, ...)")
+    p.add_argument("--seed", type=seed, default=0, help="first seed S")
+    p.add_argument(
+        "--out", type=output_dir, default="runs/strokes", help="output directory (resumes an interrupted run)"
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_strokes)
 
@@ -110,18 +107,9 @@ def _add_strokes(sub: argparse._SubParsersAction) -> None:
 def _cmd_repeat(args: argparse.Namespace) -> int:
     from ..studies.repeated_strokes import run_repeated, summary_markdown
 
-    wigs = _wig_names(args.wigs)
-    for flag, value, ok in (
-        ("--strokes", args.strokes, args.strokes >= 1),
-        ("--seeds", args.seeds, args.seeds >= 1),
-        ("--seed", args.seed, args.seed >= 0),
-        ("--brush-length", args.brush_length, 0.0 < args.brush_length <= 1.0),
-    ):
-        if not ok:
-            raise SystemExit(f"hairbrush repeat: {flag} {value!r} is out of range")
     try:
         rows = run_repeated(
-            wigs,
+            args.wigs,
             seeds=range(args.seed, args.seed + args.seeds),
             n_strokes=args.strokes,
             brush_length=args.brush_length,
@@ -139,17 +127,24 @@ def _add_repeat(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "repeat",
         help="repeated full strokes: force and entanglement per stroke (thesis Fig. 3.6(i), eq. 3.4)",
-        formatter_class=argparse.ArgumentDefaultsHelpFormatter,
     )
-    p.add_argument("--wigs", default="curly,coily", help="comma-separated preset names, or 'all'")
-    p.add_argument("--strokes", type=int, default=6, help="strokes per series")
     p.add_argument(
-        "--brush-length", type=float, default=1.0, help="normalized start height b_l of every stroke"
+        "--wigs", type=wig_names(), default="curly,coily", help="comma-separated wig names, or 'all'"
     )
-    p.add_argument("--seeds", type=int, default=3, help="series (pre-brushed wigs S, S+1, ...)")
-    p.add_argument("--seed", type=int, default=0, help="first seed S")
+    p.add_argument("--strokes", type=count, default=6, help="strokes per series")
     p.add_argument(
-        "--out", default="runs/repeat", help="output directory (keeps the complete series of a rerun)"
+        "--brush-length",
+        type=number(0.0, exclusive=True, maximum=1.0),
+        default=1.0,
+        help="normalized start height b_l of every stroke, in (0, 1]",
+    )
+    p.add_argument("--seeds", type=count, default=3, help="series (pre-brushed wigs S, S+1, ...)")
+    p.add_argument("--seed", type=seed, default=0, help="first seed S")
+    p.add_argument(
+        "--out",
+        type=output_dir,
+        default="runs/repeat",
+        help="output directory (keeps the complete series of a rerun)",
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_repeat)

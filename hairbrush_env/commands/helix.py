@@ -6,6 +6,8 @@ import argparse
 import math
 from pathlib import Path
 
+from .checks import UsageError, count, integer, output_dir, positive, seed
+
 
 def _helix_setup(args: argparse.Namespace):
     from ..studies.double_helix import CombingSetup, replace_setup
@@ -14,12 +16,12 @@ def _helix_setup(args: argparse.Namespace):
     for item in args.set or []:
         key, sep, value = item.partition("=")
         if not sep:
-            raise SystemExit(f"hairbrush helix: --set expects KEY=VALUE, got {item!r}")
+            raise UsageError("--set", f"expected KEY=VALUE, got {item!r}")
         changes[key.strip()] = value.strip()
     try:
         return replace_setup(CombingSetup(), **changes)
     except (TypeError, ValueError) as exc:
-        raise SystemExit(f"hairbrush helix: {exc}") from exc
+        raise UsageError("--set", str(exc)) from None
 
 
 def _cmd_helix_run(args: argparse.Namespace) -> int:
@@ -62,10 +64,9 @@ def _cmd_helix_run(args: argparse.Namespace) -> int:
 def _cmd_helix_sweep(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from ..io import write_json, write_text
+    from ..io import csv_text, write_json, write_text
     from ..studies.double_helix import (
         CombingResult,
-        _csv,
         optimal_q,
         plot_cost,
         plot_sweep,
@@ -77,12 +78,12 @@ def _cmd_helix_sweep(args: argparse.Namespace) -> int:
     base = _helix_setup(args)
     name, sep, values = args.vary.partition("=")
     if not sep or not values:
-        raise SystemExit(f"hairbrush helix sweep: --vary expects NAME=v1,v2,..., got {args.vary!r}")
+        raise UsageError("--vary", f"expected NAME=v1,v2,..., got {args.vary!r}")
     name = name.strip()
     try:
         setups = [replace_setup(base, **{name: v.strip()}) for v in values.split(",")]
     except (TypeError, ValueError) as exc:
-        raise SystemExit(f"hairbrush helix sweep: {exc}") from exc
+        raise UsageError("--vary", str(exc)) from None
     points = [{"setup": s.key(), "seed": seed} for s in setups for seed in range(args.seeds)]
     out = Path(args.out)
     raw = run_sweep(run_point, points, out / "cache", workers=args.workers, desc=f"sweep {name}")
@@ -103,8 +104,10 @@ def _cmd_helix_sweep(args: argparse.Namespace) -> int:
               "combed_lk_end_fraction", "min_gap_tine_over_r", "min_gap_strands_over_r", "strand_crossings",
               "tine_crossings", "Lk_end_faithful", "bend_max_deg", "x_at_bend_max", "kinked",
               "kink_jams", "kink_free_drops", "wall_time_s"]  # fmt: skip
-    write_text(out / f"sweep_{name}.csv", _csv(header, rows))
-    write_text(out / f"sweep_{name}_curves.csv", _csv(["value", "seed", *results[0].csv_rows()[0]], curves))
+    write_text(out / f"sweep_{name}.csv", csv_text(header, rows))
+    write_text(
+        out / f"sweep_{name}_curves.csv", csv_text(["value", "seed", *results[0].csv_rows()[0]], curves)
+    )
     plot_sweep(results, name, out / f"sweep_{name}.png")
     print(
         f"{name:>10} {'f_max':>8} {'jammed':>7} {'Lk0':>6} {'Lk_end':>7} {'combed left':>11} {'crossings':>9}"
@@ -149,11 +152,11 @@ def _add_helix(sub: argparse._SubParsersAction) -> None:
         help="override a CombingSetup field, e.g. --set P_over_r=18 --set q=4 (repeatable; q=none = midpoint, "
         "q=clamp = half a pitch below the clamp)",
     )
-    common.add_argument("--out", default="runs/helix", help="output directory (default: runs/helix)")
+    common.add_argument("--out", type=output_dir, default="runs/helix", help="output directory")
     run = hsub.add_parser(
         "run", parents=[common], help="one combing run: CSV, JSON and a PNG (Figs 2.2c,e, 2.8)"
     )
-    run.add_argument("--seed", type=int, default=0)
+    run.add_argument("--seed", type=seed, default=0, help="seed of the run")
     run.set_defaults(func=_cmd_helix_run)
     sweep = hsub.add_parser(
         "sweep",
@@ -161,8 +164,8 @@ def _add_helix(sub: argparse._SubParsersAction) -> None:
         help="parallel, cached, resumable sweep of one field (q also writes the eq. 2.8 cost)",
     )
     sweep.add_argument("--vary", required=True, metavar="NAME=v1,v2,...", help="e.g. P_over_r=18,24,36,48")
-    sweep.add_argument("--seeds", type=int, default=1, help="seeds per value (default: 1)")
-    sweep.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
+    sweep.add_argument("--seeds", type=count, default=1, help="seeds per value")
+    sweep.add_argument("--workers", type=count, default=2, help="worker processes")
     sweep.set_defaults(func=_cmd_helix_sweep)
 
 
@@ -172,7 +175,7 @@ def _cmd_census(args: argparse.Namespace) -> int:
     try:
         setup = CurlSetup(n_hairs=args.hairs, n_edges=args.edges, settle_time=args.settle)
     except ValueError as exc:
-        raise SystemExit(f"hairbrush census: {exc}") from exc
+        raise UsageError("--hairs/--edges/--settle", str(exc)) from None
     out = Path(args.out)
     stats = run_census_sweep(setup, seeds=range(args.seeds), cache_dir=out / "cache", workers=args.workers)
     paths = write_census(stats, out)
@@ -196,14 +199,14 @@ def _add_census(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "census", help="N-body interaction census of a simulated 12-hair curl (thesis Figs 2.3b, 2.5)"
     )
-    p.add_argument("--seeds", type=int, default=4, help="independent curls to average (default: 4)")
-    p.add_argument("--hairs", type=int, default=12, help="hairs per curl (default: 12)")
+    p.add_argument("--seeds", type=count, default=4, help="independent curls to average")
+    p.add_argument("--hairs", type=integer(2), default=12, help="hairs per curl")
     p.add_argument(
-        "--edges", type=int, default=100, help="edges per hair (default: 100, δl = 2 mm as in Fig. 2.10)"
+        "--edges", type=integer(4), default=100, help="edges per hair (100: δl = 2 mm as in Fig. 2.10)"
     )
-    p.add_argument("--settle", type=float, default=1.5, help="simulated seconds of jostling + relaxation")
-    p.add_argument("--workers", type=int, default=2, help="worker processes (default: 2)")
-    p.add_argument("--out", default="runs/census", help="output directory (default: runs/census)")
+    p.add_argument("--settle", type=positive, default=1.5, help="simulated seconds of jostling + relaxation")
+    p.add_argument("--workers", type=count, default=2, help="worker processes")
+    p.add_argument("--out", type=output_dir, default="runs/census", help="output directory")
     p.set_defaults(func=_cmd_census)
 
 

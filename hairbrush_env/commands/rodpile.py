@@ -6,6 +6,18 @@ import argparse
 import math
 from pathlib import Path
 
+from .checks import (
+    UsageError,
+    count,
+    input_file,
+    non_negative,
+    number,
+    output_dir,
+    output_file,
+    positive,
+    seed,
+)
+
 
 def _rodpile_summary(p) -> dict:
     import math
@@ -263,14 +275,22 @@ def _cmd_rodpile_fields(args: argparse.Namespace) -> int:
     from ..studies.rod_pile import load_packing
 
     out = Path(args.out)
-    fields, summary = {}, {}
-    for path in tqdm(args.piles, desc="fields", unit="pile", disable=args.quiet):
+    packings = {}
+    for path in args.piles:  # every file is read before any field is computed
         try:
-            p = load_packing(path)
-            spacing = None if args.spacing is None else args.spacing * p.diameter
-            f = local_fields(p, args.ls * p.diameter, spacing=spacing, shape=args.shape)
-        except ValueError as exc:
-            raise SystemExit(f"hairbrush rodpile fields: {exc}") from exc
+            packings[path] = load_packing(path)
+        except (ValueError, OSError) as exc:
+            raise UsageError("piles", f"cannot read {path!r}: {exc}") from None
+    fields, summary = {}, {}
+    for path, p in tqdm(packings.items(), desc="fields", unit="pile", disable=args.quiet):
+        spacing = None if args.spacing is None else args.spacing * p.diameter
+        f = local_fields(p, args.ls * p.diameter, spacing=spacing, shape=args.shape)
+        if int(f.mask.sum()) < 2:
+            raise UsageError(
+                "--ls",
+                f"cells of {args.ls:g} rod diameters leave {int(f.mask.sum())} cell(s) inside {path!r} (too small a "
+                "pile for them); pass a smaller --ls",
+            )
         label = f"ε = {f.meta.get('strain', 0.0):.3g}"
         while label in fields:
             label += "'"
@@ -325,89 +345,109 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
 
     def common(q, pile_arg=True):
         if pile_arg:
-            q.add_argument("pile", help="packing file (.npz from generate, or CSV of endpoints / rod,x,y,z)")
+            q.add_argument(
+                "pile",
+                type=input_file,
+                help="packing file (.npz from generate, or CSV of endpoints / rod,x,y,z)",
+            )
         q.add_argument("--quiet", action="store_true", help="no progress bars")
 
     g = rsub.add_parser("generate", help="drop, jostle and settle rods in a cylinder (§4.5.1)")
-    g.add_argument("--n-rods", type=int, default=150)
-    g.add_argument("--alpha", type=float, default=20.0, help="aspect ratio L/d (default 20)")
-    g.add_argument("--length", type=float, default=0.05, help="rod length [m] (default 0.05)")
+    g.add_argument("--n-rods", type=count, default=150, help="rods in the pile")
+    g.add_argument("--alpha", type=number(1.0), default=20.0, help="aspect ratio L/d")
+    g.add_argument("--length", type=positive, default=0.05, help="rod length [m]")
+    g.add_argument("--container", type=positive, default=3.0, help="container diameter in rod lengths")
+    g.add_argument("--friction", type=non_negative, default=0.4, help="rod–rod friction coefficient")
     g.add_argument(
-        "--container", type=float, default=3.0, help="container diameter in rod lengths (default 3)"
+        "--wall-friction", type=non_negative, default=None, help="rod–wall friction (default: --friction)"
     )
-    g.add_argument("--friction", type=float, default=0.4)
-    g.add_argument(
-        "--wall-friction", type=float, default=None, help="rod–wall friction (default: --friction)"
-    )
-    g.add_argument("--batch", type=int, default=10, help="rods dropped together (default 10)")
-    g.add_argument("--seed", type=int, default=0)
-    g.add_argument("--no-jostle", action="store_true")
+    g.add_argument("--batch", type=count, default=10, help="rods dropped together")
+    g.add_argument("--seed", type=seed, default=0, help="seed of the drop positions and orientations")
+    g.add_argument("--no-jostle", action="store_true", help="skip the jostling that compacts the pile")
     g.add_argument(
         "--freeze-depth",
-        type=float,
+        type=positive,
         default=None,
         help="freeze rods buried deeper than this many rod lengths while adding rods (speed-up)",
     )
     g.add_argument(
         "--terminal-speed",
-        type=float,
+        type=number(0.0, exclusive=True, maximum=0.5),
         default=0.25,
-        help="deposition drag terminal speed in rod diameters per time step (default 0.25, max 0.5)",
+        help="deposition drag terminal speed in rod diameters per time step (at most 0.5)",
     )
     g.add_argument(
         "--placement",
         choices=("centered", "uniform"),
         default="centered",
-        help="start positions of new rods: centered (default) or uniform over all configurations that fit",
+        help="start positions of new rods: centered or uniform over all configurations that fit",
     )
-    g.add_argument("--out", default="runs/rodpile/pile.npz")
+    g.add_argument(
+        "--out", type=output_file(".npz"), default="runs/rodpile/pile.npz", help="packing file to write"
+    )
     common(g, pile_arg=False)
     g.set_defaults(func=_cmd_rodpile_generate)
 
     sm = rsub.add_parser("summary", help="φ_f α, contacts vs Philipse, orientations, profiles of saved piles")
-    sm.add_argument("piles", nargs="+", help="packing files (.npz / CSV)")
-    sm.add_argument("--out", default=None, help="write the summaries as JSON")
-    sm.add_argument("--plot", default=None, help="draw φ_f α and ⟨c⟩ vs α of these piles (PNG)")
+    sm.add_argument("piles", nargs="+", type=input_file, help="packing files (.npz / CSV)")
+    sm.add_argument("--out", type=output_file(".json"), default=None, help="write the summaries as JSON")
+    sm.add_argument(
+        "--plot",
+        type=output_file(".png", ".pdf", ".svg"),
+        default=None,
+        help="draw φ_f α and ⟨c⟩ vs α of these piles",
+    )
     sm.set_defaults(func=_cmd_rodpile_summary)
 
     gas = rsub.add_parser(
         "gas", help="geometric reference: overlapping isotropic rods placed inside the container"
     )
-    gas.add_argument("--n-rods", type=int, default=600)
-    gas.add_argument("--alpha", type=float, default=20.0)
-    gas.add_argument("--length", type=float, default=0.05)
-    gas.add_argument("--container", type=float, default=3.0, help="container diameter in rod lengths")
-    gas.add_argument("--height", type=float, default=2.0, help="height of the centres' range in rod lengths")
-    gas.add_argument("--seed", type=int, default=0)
-    gas.add_argument("--out", default="runs/rodpile/gas.npz")
+    gas.add_argument("--n-rods", type=count, default=600, help="rods placed")
+    gas.add_argument("--alpha", type=number(1.0), default=20.0, help="aspect ratio L/d")
+    gas.add_argument("--length", type=positive, default=0.05, help="rod length [m]")
+    gas.add_argument("--container", type=positive, default=3.0, help="container diameter in rod lengths")
+    gas.add_argument(
+        "--height", type=positive, default=2.0, help="height of the centres' range in rod lengths"
+    )
+    gas.add_argument("--seed", type=seed, default=0, help="seed of the placement")
+    gas.add_argument(
+        "--out", type=output_file(".npz"), default="runs/rodpile/gas.npz", help="packing file to write"
+    )
     gas.set_defaults(func=_cmd_rodpile_gas)
 
     s = rsub.add_parser("sweep", help="φ_f and ⟨c⟩ vs aspect ratio (Fig. 4.5); resumable")
-    s.add_argument("--alphas", type=float, nargs="+", default=[38.0, 76.0, 100.0])
-    s.add_argument("--n-rods", type=int, nargs="+", default=[400, 800, 1000], help="rods per α")
-    s.add_argument("--length", type=float, default=0.05)
-    s.add_argument("--container", type=float, default=3.0)
-    s.add_argument("--friction", type=float, default=0.4)
-    s.add_argument("--batch", type=int, default=20)
-    s.add_argument("--seed", type=int, default=0)
+    s.add_argument(
+        "--alphas", type=number(1.0), nargs="+", default=[38.0, 76.0, 100.0], help="aspect ratios L/d"
+    )
+    s.add_argument("--n-rods", type=count, nargs="+", default=[400, 800, 1000], help="rods per α")
+    s.add_argument("--length", type=positive, default=0.05, help="rod length [m]")
+    s.add_argument("--container", type=positive, default=3.0, help="container diameter in rod lengths")
+    s.add_argument("--friction", type=non_negative, default=0.4, help="rod–rod friction coefficient")
+    s.add_argument("--batch", type=count, default=20, help="rods dropped together")
+    s.add_argument("--seed", type=seed, default=0, help="seed of the first pile")
     s.add_argument(
         "--freeze-depth",
-        type=float,
+        type=positive,
         default=None,
         help="freeze rods buried deeper than this many rod lengths while adding rods (speed-up)",
     )
-    s.add_argument("--out", default="runs/rodpile/sweep")
+    s.add_argument("--out", type=output_dir, default="runs/rodpile/sweep", help="output directory (resumes)")
     common(s, pile_arg=False)
     s.set_defaults(func=_cmd_rodpile_sweep)
 
     c = rsub.add_parser("compress", help="piston load–strain cycles (Figs 4.2, 4.6)")
     common(c)
-    c.add_argument("--strain-max", type=float, default=0.15)
-    c.add_argument("--cycles", type=int, default=3)
-    c.add_argument("--rate", type=float, default=None, help="strain rate [1/s] (default: quasi-static)")
+    c.add_argument(
+        "--strain-max",
+        type=number(0.0, exclusive=True, maximum=0.9),
+        default=0.15,
+        help="largest strain ε_max",
+    )
+    c.add_argument("--cycles", type=count, default=3, help="load–unload cycles")
+    c.add_argument("--rate", type=positive, default=None, help="strain rate [1/s] (default: quasi-static)")
     c.add_argument(
         "--schedule",
-        type=float,
+        type=positive,
         nargs=3,
         metavar=("START", "STOP", "STEP"),
         default=None,
@@ -418,32 +458,37 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
         action="store_true",
         help="also run one cycle to the largest ε_max on the original pile (red curve of Fig. 4.6)",
     )
-    c.add_argument("--out", default="runs/rodpile/compress")
+    c.add_argument("--out", type=output_dir, default="runs/rodpile/compress", help="output directory")
     c.set_defaults(func=_cmd_rodpile_compress)
 
     t = rsub.add_parser("tension", help="glue top/bottom layers and pull apart (Fig. 5.3)")
     common(t)
-    t.add_argument("--glue-depth", type=float, default=0.15, help="glued layer thickness / pile height")
+    t.add_argument(
+        "--glue-depth",
+        type=number(0.0, exclusive=True, maximum=0.5),
+        default=0.15,
+        help="glued layer thickness / pile height",
+    )
     t.add_argument(
         "--strain-max",
-        type=float,
+        type=positive,
         default=2.0,
         help="maximum plate lift / pile height (the run stops earlier once the parts separate)",
     )
-    t.add_argument("--out", default="runs/rodpile/tension")
+    t.add_argument("--out", type=output_dir, default="runs/rodpile/tension", help="output directory")
     t.set_defaults(func=_cmd_rodpile_tension)
 
     f = rsub.add_parser("fields", help="φ, S, e, n fields, histograms, maps, correlations (Figs 4.3, 4.4)")
-    f.add_argument("piles", nargs="+", help="packings (e.g. pile.npz compressed.npz)")
-    f.add_argument("--ls", type=float, default=10.0, help="cell size l_s in rod diameters (default 10)")
-    f.add_argument("--spacing", type=float, default=None, help="grid spacing in diameters (default l_s)")
-    f.add_argument("--shape", choices=("cube", "sphere"), default="cube")
-    f.add_argument("--out", default="runs/rodpile/fields")
-    f.add_argument("--quiet", action="store_true")
+    f.add_argument("piles", nargs="+", type=input_file, help="packings (e.g. pile.npz compressed.npz)")
+    f.add_argument("--ls", type=positive, default=10.0, help="cell size l_s in rod diameters")
+    f.add_argument("--spacing", type=positive, default=None, help="grid spacing in diameters (default: l_s)")
+    f.add_argument("--shape", choices=("cube", "sphere"), default="cube", help="cell shape")
+    f.add_argument("--out", type=output_dir, default="runs/rodpile/fields", help="output directory")
+    f.add_argument("--quiet", action="store_true", help="no progress bar")
     f.set_defaults(func=_cmd_rodpile_fields)
 
     pl = rsub.add_parser("plot", help="redraw figures from fields_*.npz / compression.npz in a directory")
-    pl.add_argument("dir")
+    pl.add_argument("dir", help="results directory of fields/compress")
     pl.set_defaults(func=_cmd_rodpile_plot)
     # CT stacks (thesis §4.6): `tomogram` renders a packing, `segment` recovers rods from a stack.
     from .rodpile_segment import add_segment_parser

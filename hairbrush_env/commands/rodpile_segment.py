@@ -10,6 +10,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .checks import input_file, non_negative, number, output_file, positive, seed
+
 
 def _cmd_rodpile_segment(args: argparse.Namespace) -> int:
     from ..io import write_json
@@ -84,34 +86,49 @@ def add_segment_parser(rsub: argparse._SubParsersAction) -> None:
     s = rsub.add_parser(
         "segment", help="CT stack → rod centerlines (thesis §4.6); output feeds `rodpile fields`"
     )
-    s.add_argument("volume", help=".npy (x, y, z) or .tif stack (z, y, x); a <stem>.json sidecar supplies the "
-                   "voxel size and origin")  # fmt: skip
-    s.add_argument("--diameter", type=float, required=True, help="rod diameter d [m]")
+    s.add_argument("volume", type=input_file, help=".npy (x, y, z) or .tif stack (z, y, x); a <stem>.json "
+                   "sidecar supplies the voxel size and origin")  # fmt: skip
+    s.add_argument("--diameter", type=positive, required=True, help="rod diameter d [m]")
     s.add_argument(
-        "--voxel-size", type=float, default=None, help="voxel edge [m] (default: from the sidecar)"
+        "--voxel-size", type=positive, default=None, help="voxel edge [m] (default: from the sidecar)"
     )
     s.add_argument("--origin", type=float, nargs=3, default=None, metavar=("X", "Y", "Z"),
                    help="world corner of voxel (0,0,0) [m]; voxel (i,j,k) is centred at origin + (ijk+½)·voxel "
                    "(default: sidecar, else 0)")  # fmt: skip
     s.add_argument("--axes", choices=("xyz", "zyx"), default=None,
                    help="axis order of the array (default: sidecar, else xyz for .npy, zyx for .tif)")  # fmt: skip
-    s.add_argument("--container-diameter", type=float, default=None,
+    s.add_argument("--container-diameter", type=positive, default=None,
                    help="container diameter [m] for the field mask (cylinder axis x = y = 0, floor z = 0)")  # fmt: skip
-    s.add_argument("--denoise-sigma", type=float, default=0.8, help="Gaussian σ [voxels] (default 0.8)")
-    s.add_argument("--core", type=float, default=0.88, help="ridge level, fraction of the local max (0.88)")
+    s.add_argument("--denoise-sigma", type=non_negative, default=0.8, help="Gaussian σ [voxels]")
+    s.add_argument(
+        "--core",
+        type=number(0.0, exclusive=True, maximum=1.0),
+        default=0.88,
+        help="ridge level, fraction of the local max",
+    )
     s.add_argument("--watershed-cut", action="store_true",
                    help="also cut along the first watershed (H-maxima markers of the EDT)")  # fmt: skip
-    s.add_argument("--h", type=float, default=0.1, help="H-maxima height [d] for --watershed-cut (0.1)")
-    s.add_argument("--merge-gap", type=float, default=2.0, help="repair: max end-point distance [d] (2)")
-    s.add_argument("--merge-angle", type=float, default=8.0, help="repair: max axis angle [deg] (8)")
-    s.add_argument("--merge-cc-angle", type=float, default=4.0,
-                   help="repair: max centre-to-centre vs axis angle [deg] (4)")  # fmt: skip
-    s.add_argument("--min-length", type=float, default=3.0, help="drop rods shorter than this [d] (3)")
-    s.add_argument("--extend", type=float, default=3.0, help="max end extension along the axis [d] (3)")
-    s.add_argument("--truth", default=None, help="ground-truth packing: report recovery and angle errors")
-    s.add_argument("--tol", type=float, default=1.0, help="recovered if both ends within tol·d (1)")
+    s.add_argument("--h", type=positive, default=0.1, help="H-maxima height [d] for --watershed-cut")
+    s.add_argument("--merge-gap", type=non_negative, default=2.0, help="repair: max end-point distance [d]")
     s.add_argument(
-        "--out", default="runs/rodpile/segments.npz", help="output packing (.npz; also .csv, json)"
+        "--merge-angle", type=number(0.0, maximum=90.0), default=8.0, help="repair: max axis angle [deg]"
+    )
+    s.add_argument("--merge-cc-angle", type=number(0.0, maximum=90.0), default=4.0,
+                   help="repair: max centre-to-centre vs axis angle [deg]")  # fmt: skip
+    s.add_argument("--min-length", type=non_negative, default=3.0, help="drop rods shorter than this [d]")
+    s.add_argument("--extend", type=non_negative, default=3.0, help="max end extension along the axis [d]")
+    s.add_argument(
+        "--truth",
+        type=input_file,
+        default=None,
+        help="ground-truth packing: report recovery and angle errors",
+    )
+    s.add_argument("--tol", type=positive, default=1.0, help="recovered if both ends within tol·d")
+    s.add_argument(
+        "--out",
+        type=output_file(".npz"),
+        default="runs/rodpile/segments.npz",
+        help="output packing (.npz; also .csv, json)",
     )
     s.add_argument("--quiet", action="store_true", help="no progress bars")
     s.set_defaults(func=_cmd_rodpile_segment)
@@ -119,10 +136,15 @@ def add_segment_parser(rsub: argparse._SubParsersAction) -> None:
     t = rsub.add_parser(
         "tomogram", help="render a packing into a synthetic CT stack (validation of `segment`)"
     )
-    t.add_argument("pile", help="packing (.npz from generate, or CSV)")
-    t.add_argument("--voxels-per-d", type=float, default=None, help="voxels across a rod (default 5)")
-    t.add_argument("--noise", type=float, default=0.15, help="noise σ / rod-air contrast (default 0.15)")
-    t.add_argument("--blur", type=float, default=0.5, help="PSF σ [voxels] (default 0.5)")
-    t.add_argument("--seed", type=int, default=0)
-    t.add_argument("--out", default="runs/rodpile/volume.npy", help=".npy or .tif (+ .json sidecar)")
+    t.add_argument("pile", type=input_file, help="packing (.npz from generate, or CSV)")
+    t.add_argument("--voxels-per-d", type=positive, default=None, help="voxels across a rod (default: 5)")
+    t.add_argument("--noise", type=non_negative, default=0.15, help="noise σ / rod-air contrast")
+    t.add_argument("--blur", type=non_negative, default=0.5, help="PSF σ [voxels]")
+    t.add_argument("--seed", type=seed, default=0, help="seed of the noise")
+    t.add_argument(
+        "--out",
+        type=output_file(".npy", ".tif", ".tiff"),
+        default="runs/rodpile/volume.npy",
+        help=".npy or .tif (+ .json sidecar)",
+    )
     t.set_defaults(func=_cmd_rodpile_tomogram)

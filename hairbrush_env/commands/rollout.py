@@ -5,6 +5,19 @@ from __future__ import annotations
 import argparse
 
 from . import add_webcam_args
+from .checks import count, output_file, policy_name, seed, wig_name
+
+
+def _wig_choices() -> list[str]:
+    from ..hair import HELD_OUT_WIGS, PRESETS
+
+    return [*PRESETS, *HELD_OUT_WIGS]
+
+
+def available_policies() -> list[str]:
+    from ..policies import available_policies as registry
+
+    return sorted(registry())
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
@@ -16,8 +29,6 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
     from ..rollout import run_episode
     from ..viz import EpisodeRecorder, VideoWriter, plot_rollout
 
-    if args.episodes < 1:
-        raise SystemExit(f"hairbrush rollout: --episodes must be >= 1, got {args.episodes}")
     try:
         env = gym.make(
             args.env,
@@ -26,7 +37,7 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
             render_mode="rgb_array",
             width=args.width,
             height=args.height,
-            **({"max_episode_steps": args.max_steps} if args.max_steps else {}),
+            **({"max_episode_steps": args.max_steps} if args.max_steps is not None else {}),
         )
         policy = make_policy(args.policy, env)
     except ValueError as exc:
@@ -106,20 +117,47 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "rollout", help="headless rollout of a policy on a brushing env (recording, video, plot)"
     )
-    p.add_argument("--env", default="HairBrush-v0", choices=["HairBrush-v0", "HairBrushContinuous-v0"])
-    p.add_argument("--wig", default="curly", help="wig preset name (see hairbrush_env.hair.PRESETS)")
-    p.add_argument("--policy", default="full", help="registered policy name (e.g. full, random) or sb3:PATH")
-    p.add_argument("--episodes", type=int, default=1)
-    p.add_argument("--seed", type=int, default=0, help="episode k uses seed S + k")
     p.add_argument(
-        "--max-steps", type=int, default=None, help="cap on env steps per episode (default: registered)"
+        "--env", default="HairBrush-v0", choices=["HairBrush-v0", "HairBrushContinuous-v0"], help="env id"
     )
-    p.add_argument("--obs-mode", default="state+image", choices=["state", "image", "state+image"])
-    p.add_argument("--rerun", metavar="OUT.rrd", help="write a rerun recording")
-    p.add_argument("--video", metavar="OUT.mp4", help="write the webcam video (10 fps)")
+    p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(_wig_choices())}")
+    p.add_argument(
+        "--policy",
+        type=policy_name,
+        default="full",
+        help=f"policy: {', '.join(available_policies())}, or sb3:DIR",
+    )
+    p.add_argument("--episodes", type=count, default=1, help="episodes to run")
+    p.add_argument("--seed", type=seed, default=0, help="episode k uses seed S + k")
+    p.add_argument(
+        "--max-steps",
+        type=count,
+        default=None,
+        help="cap on env steps per episode (default: the registered limit)",
+    )
+    p.add_argument(
+        "--obs-mode", default="state+image", choices=["state", "image", "state+image"], help="observations"
+    )
+    p.add_argument("--rerun", metavar="OUT.rrd", type=output_file(".rrd"), help="write a rerun recording")
+    p.add_argument(
+        "--video",
+        metavar="OUT.webm",
+        type=output_file(".webm", ".mp4"),
+        help="write the webcam video (10 fps): .webm (VP9, plays in browsers) or .mp4 (mp4v, video players only)",
+    )
     add_webcam_args(p)
-    p.add_argument("--json", metavar="OUT.json", help="write per-episode metrics and per-stroke traces")
-    p.add_argument("--plot", metavar="OUT.png", help="plot force vs time and max force per stroke")
+    p.add_argument(
+        "--json",
+        metavar="OUT.json",
+        type=output_file(".json"),
+        help="write per-episode metrics and stroke traces",
+    )
+    p.add_argument(
+        "--plot",
+        metavar="OUT.png",
+        type=output_file(".png", ".pdf", ".svg"),
+        help="plot force and entanglement",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_rollout)
 

@@ -5,21 +5,40 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from .checks import UsageError, count, input_file, output_dir, seed
 
-def _load_curve(path: str):
+#: Ends farther apart than this many mean edge lengths make a curve "open" for the warning of ``topology lk``.
+OPEN_GAP_EDGES = 3.0
+
+
+def _load_curve(path: str, flag: str):
+    """An ``(N >= 2, 3)`` float array from a .npy, .csv or whitespace-separated file; UsageError otherwise."""
     import numpy as np
 
     p = Path(path)
-    if not p.exists():
-        raise SystemExit(f"hairbrush: curve file not found: {path}")
-    if p.suffix == ".npy":
-        return np.load(p)
-    return np.loadtxt(p, delimiter="," if p.suffix == ".csv" else None, ndmin=2)
+    try:
+        if p.suffix == ".npy":
+            arr = np.load(p)
+        else:
+            arr = np.loadtxt(p, delimiter="," if p.suffix == ".csv" else None, ndmin=2)
+    except (ValueError, OSError) as exc:
+        raise UsageError(flag, f"cannot read {path!r} as an N x 3 array of numbers: {exc}") from None
+    arr = np.asarray(arr, dtype=float)
+    if arr.ndim != 2 or arr.shape[1] != 3 or len(arr) < 2 or not np.all(np.isfinite(arr)):
+        raise UsageError(flag, f"{path!r} must hold N >= 2 rows of 3 finite numbers, got shape {arr.shape}")
+    return arr
+
+
+def _looks_open(curve) -> bool:
+    import numpy as np
+
+    edges = np.linalg.norm(np.diff(curve, axis=0), axis=1)
+    return float(np.linalg.norm(curve[-1] - curve[0])) > OPEN_GAP_EDGES * float(edges.mean())
 
 
 def _cmd_topology_demo(args: argparse.Namespace) -> int:
     from ..io import write_json
-    from ..topology.demo import plot_demo, run_demo
+    from ..studies.topology_demo import plot_demo, run_demo
     from ..viz import record_curves
 
     out = Path(args.out)
@@ -39,9 +58,20 @@ def _cmd_topology_demo(args: argparse.Namespace) -> int:
 
 
 def _cmd_topology_lk(args: argparse.Namespace) -> int:
+    import sys
+
     from ..topology import linking_number, writhe
 
-    a, b = _load_curve(args.curve_a), _load_curve(args.curve_b)
+    a, b = _load_curve(args.curve_a, "curve_a"), _load_curve(args.curve_b, "curve_b")
+    if not args.open:
+        for name, curve in (("curve_a", a), ("curve_b", b)):
+            if _looks_open(curve):
+                print(
+                    f"hairbrush topology lk: warning: {name} looks open (its ends are more than {OPEN_GAP_EDGES:g} "
+                    "mean edges apart) but is closed by a straight segment; pass --open for the open-curve "
+                    "Gauss integral",
+                    file=sys.stderr,
+                )
     try:
         lk = linking_number(a, b, closed=not args.open)
         wa, wb = writhe(a, closed=not args.open), writhe(b, closed=not args.open)
@@ -57,15 +87,15 @@ def _add_topology(sub: argparse._SubParsersAction) -> None:
     demo = tsub.add_parser(
         "demo", help="kinematic combing demo: writes a PNG figure, a rerun recording and JSON"
     )
-    demo.add_argument("--out", default="runs/demo", help="output directory (default: runs/demo)")
-    demo.add_argument("--frames", type=int, default=21, help="number of tine positions (default: 21)")
-    demo.add_argument("--seed", type=int, default=0, help="seed of the random bundle for the census")
+    demo.add_argument("--out", type=output_dir, default="runs/demo", help="output directory")
+    demo.add_argument("--frames", type=count, default=21, help="number of tine positions")
+    demo.add_argument("--seed", type=seed, default=0, help="seed of the random bundle for the census")
     demo.set_defaults(func=_cmd_topology_demo)
     lk = tsub.add_parser(
         "lk", help="linking number and writhes of two curves from ..npy/.csv/.txt (N x 3) files"
     )
-    lk.add_argument("curve_a")
-    lk.add_argument("curve_b")
+    lk.add_argument("curve_a", type=input_file, help="first curve: .npy, .csv or .txt with N x 3 coordinates")
+    lk.add_argument("curve_b", type=input_file, help="second curve, same formats")
     lk.add_argument("--open", action="store_true", help="treat curves as open (real-valued Gauss integral)")
     lk.set_defaults(func=_cmd_topology_lk)
 

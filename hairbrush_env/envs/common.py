@@ -11,12 +11,9 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-#: Pain threshold of the thesis (chapter 3, Algorithm 1): F_T ≈ 10 N.
-PAIN_THRESHOLD_N = 10.0
-#: Rated capacity of the simulated load cell [N]: readings saturate here, which bounds the observation spaces.
-LOAD_CELL_CAPACITY_N = 100.0
-#: Thesis eq. 3.4: brushing is finished when consecutive full strokes' maximum forces differ by less than this [N].
-FINISH_FORCE_TOLERANCE_N = 0.4
+from ..constants import FINISH_FORCE_TOLERANCE_N, LOAD_CELL_CAPACITY_N, PAIN_THRESHOLD_N
+
+__all__ = ["FINISH_FORCE_TOLERANCE_N", "LOAD_CELL_CAPACITY_N", "PAIN_THRESHOLD_N"]  # re-exported for the envs
 #: Upper bound of counters/clocks in observations (episodes are far shorter).
 MAX_COUNT = 10_000.0
 

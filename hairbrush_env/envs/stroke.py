@@ -73,7 +73,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     cost (simulated stroke time plus a fixed repositioning overhead), minus a pain penalty (force above F_T, summed
     over samples), plus a finish bonus (5) on the stroke that ends the episode by termination. Each term is
     reported in `info`. The bonus closes a reward hack: without it, 30 painless strokes at the lowest b_l
-    outscored every policy that brushes through (README, *RL baseline*).
+    outscored every policy that brushes through (docs/rl.md, *Reward holes*).
 
     ## Starting State
     A pre-brushed wig: the wig is shaken into a reproducible tangled state chosen by the seed among

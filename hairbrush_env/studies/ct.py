@@ -11,7 +11,7 @@ scikit-image here; defaults in brackets, lengths in rod diameters d):
    ``watershed_cut=True`` [off: see below];
 4. **skeletonize** (3-D, Lee) the *ridge* of the rods — rod voxels at least ``core`` [0.88] × as bright as the
    brightest voxel within a d-wide window, i.e. each rod's bright axis; the dimmer necks where rods touch drop
-   out, which separates contacts better than cutting the Otsu mask (on the synthetic piles of the README the
+   out, which separates contacts better than cutting the Otsu mask (on the synthetic piles of docs/ct.md the
    first-watershed cuts on top of the ridge never helped: equal or up to 7 % lower recovery, twice the run
    time; hence off by default) — and **remove branch
    points** (skeleton voxels with ≥ 3 skeleton neighbours in the 26-neighbourhood, counted with
@@ -446,7 +446,7 @@ def segment_rods(
     watershed_cut : bool
         Also cut the ridge mask along the lines of the first watershed (H-maxima markers of the EDT, thesis step
         "watershed segmentation"). Off by default: on our synthetic piles the ridge already separates contacts
-        and the extra cuts gave equal or up to 7 % lower recovery at twice the run time (README).
+        and the extra cuts gave equal or up to 7 % lower recovery at twice the run time (docs/ct.md).
     h : float
         Height of the H-maxima transform of the EDT [d] (markers of the first watershed).
     merge_gap : float

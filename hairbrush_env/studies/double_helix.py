@@ -23,7 +23,8 @@ Model (MuJoCo 4.0 discrete elastic rods from :mod:`hairbrush_env.rods`, topology
   contact sum is the exact constraint force acting on it.
 * Quasi-static: the tine moves at 5 mm/s (``speed``). On the reduced P/r = 36 helix (6 cm) f_max is 4.13, 3.77,
   3.05, 2.85, 2.77 and 2.74 at 40, 20, 10, 5, 2.5 and 1.25 mm/s (``hairbrush helix sweep --vary speed=...``,
-  README), so at 5 mm/s the force is within ~4 % of its slow limit; the earlier 20 mm/s default carried a ~35 %
+  docs/double_helix.md), so at 5 mm/s the force is within ~4 % of its slow limit; the earlier 20 mm/s default carried
+  a ~35 %
   dynamic part, about half of it inertia of the mass-scaled strands (mass ×10 instead of ×100 halves it). Viscous
   drag ``drag`` [N s/m²] on every vertex (≈ critical for the hanging pendulum mode) removes swinging; f_max does
   not depend on it (×0.25 … ×4 changed it by < 0.3 % at 20 mm/s). ``tests/studies/test_double_helix.py`` checks
@@ -134,7 +135,8 @@ class CombingSetup:
         Simulation step [s].
     contact_timeconst : float
         Time constant of all contacts (``solref[0]``) [s]; stiffness ∝ mass / timeconst². MuJoCo needs ≥ 2
-        ``timestep``. 4 ms (rods.py advice for thin hair) holds in the README's runs with P/r ≥ 24 but for the longest
+        ``timestep``. 4 ms (rods.py advice for thin hair) holds in the runs of docs/double_helix.md with P/r ≥ 24 but
+        for the longest
         stroke (q = 12); the tight P/r = 18 helix overloads it (one strand is pinched through the other at the tine
         at release: ``strand_crossings``), and 2 ms at a 1 ms step holds.
     settle_time : float
@@ -1064,33 +1066,23 @@ def run_point(point: dict[str, Any]) -> dict[str, Any]:
     return run_combing(CombingSetup(**setup_d), seed=int(point.get("seed", 0))).to_dict()
 
 
-def _csv(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    import csv
-    import io
-
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(header)
-    for row in rows:
-        w.writerow([f"{v:.6g}" if isinstance(v, float) else v for v in row])
-    return buf.getvalue()
-
-
 def write_run(result: CombingResult, out_dir, *, stem: str = "combing") -> list:
     """Write ``<stem>.csv`` (curves), ``<stem>_snapshots.csv``, ``<stem>.json`` (summary) and ``<stem>.png``."""
     from pathlib import Path
 
-    from ..io import write_json, write_text
+    from ..io import csv_text, write_json, write_text
 
     out = Path(out_dir)
     header, table = result.csv_rows()
-    paths = [write_text(out / f"{stem}.csv", _csv(header, table.tolist()))]
+    paths = [write_text(out / f"{stem}.csv", csv_text(header, table.tolist()))]
     rows = [
         [x, float(si), float(v)]
         for x, (s, dl) in result.snapshots.items()
         for si, v in zip(s, dl, strict=True)
     ]
-    paths.append(write_text(out / f"{stem}_snapshots.csv", _csv(["x", "s_m", "dlambda_over_lambda0"], rows)))
+    paths.append(
+        write_text(out / f"{stem}_snapshots.csv", csv_text(["x", "s_m", "dlambda_over_lambda0"], rows))
+    )
     paths.append(write_json(out / f"{stem}.json", result.summary()))
     plot_run(result, out / f"{stem}.png")
     paths.append(out / f"{stem}.png")

@@ -30,7 +30,7 @@ pile (α = 76) run for 1 200 more steps without drag kept moving at ~0.1 √(g d
 3.9 d (2.7 d with ``noslip_iterations = 10``), while ⟨|cos θ|⟩ changed by < 0.001
 (``python scripts/benchmark_rodpile.py --skip-fields --skip-generate --solver-check PILE``). Placement:
 new rods start at random positions fully inside the container (``placement``); with the default "centered" rule
-flat rods start near the axis, which strengthens the radial inhomogeneity of φ in a 1.5 L container (README).
+flat rods start near the axis, which strengthens the radial inhomogeneity of φ in a 1.5 L container (docs/rod_piles.md).
 
 Determinism: one process, one thread, fixed seed → bitwise identical packings (MuJoCo's pipeline is
 deterministic for identical inputs; all randomness comes from ``numpy.random.default_rng(seed)``; wall time is
@@ -67,6 +67,7 @@ from pathlib import Path
 import numpy as np
 
 from ..io import atomic_path
+from ..topology.proximity import segment_distances
 
 __all__ = [
     "CompressionResult",
@@ -464,7 +465,7 @@ class SimParams:
         return it, it, max(self.mass * self.diameter**2 / 8, 0.05 * it)
 
 
-class _Pile:
+class Pile:
     """A compiled MuJoCo model of the rods (free or glued), the container and optionally a piston."""
 
     def __init__(
@@ -672,7 +673,7 @@ def _endpoints(pos: np.ndarray, quat: np.ndarray, length: float) -> np.ndarray:
     return np.stack([pos - ax * length / 2, pos + ax * length / 2], axis=1)
 
 
-def _poses_from_endpoints(ep: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+def poses_from_endpoints(ep: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
     import mujoco
 
     pos = ep.mean(axis=1)
@@ -683,12 +684,6 @@ def _poses_from_endpoints(ep: np.ndarray) -> tuple[np.ndarray, np.ndarray, float
     for i, ui in enumerate(u):
         mujoco.mju_quatZ2Vec(quat[i], ui)
     return pos, quat, length
-
-
-def _segment_distances(a0, a1, b0s, b1s) -> np.ndarray:
-    from ..topology._kernels import _segment_distance
-
-    return np.array([_segment_distance(a0, a1, b0, b1) for b0, b1 in zip(b0s, b1s, strict=True)])
 
 
 def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float, placement: str = "centered"):
@@ -732,7 +727,7 @@ def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float,
             ext = L / 2 * abs(u[2]) + d
             c = np.array([rr * math.cos(ph), rr * math.sin(ph), z_top + ext + 2 * d + rng.random() * band])
             a0, a1 = c - u * L / 2, c + u * L / 2
-            if not obst0 or _segment_distances(a0, a1, np.array(obst0), np.array(obst1)).min() > 2 * d:
+            if not obst0 or segment_distances(a0, a1, np.array(obst0), np.array(obst1)).min() > 2 * d:
                 break
         else:  # pragma: no cover - only with absurd batch sizes
             c = c + np.array([0, 0, band])
@@ -743,7 +738,7 @@ def _place_batch(rng, k: int, sp: SimParams, existing: np.ndarray, z_top: float,
     return np.array(out)
 
 
-def _jostle(pile: _Pile, rng, n_shakes: int, tilt_deg: float) -> None:
+def _jostle(pile: Pile, rng, n_shakes: int, tilt_deg: float) -> None:
     """Shake and tilt the container, simulated in the container's frame (§4.5.1 "jostled ... inverted").
 
     In the frame of a container that translates with acceleration a(t) and tilts slowly, the rods feel the effective
@@ -879,8 +874,8 @@ def generate_packing(
             if freeze_depth is not None and len(ep):
                 frozen[: len(ep)] = ep[:, :, 2].max(axis=1) < z_top - freeze_depth * length
             ep = np.concatenate([ep, new])
-            pos, quat, _ = _poses_from_endpoints(ep)
-            pile = _Pile(sp, pos, quat, glued_bottom=frozen)
+            pos, quat, _ = poses_from_endpoints(ep)
+            pile = Pile(sp, pos, quat, glued_bottom=frozen)
             max_frozen = max(max_frozen, int(frozen.sum()))
             pile.settle(max_time=1.5 * t_fall, min_time=0.2 * t_fall)
             ep = pile.endpoints()
@@ -889,8 +884,8 @@ def generate_packing(
                 _jostle(pile, rng, n_shakes, tilt_deg)
                 ep = pile.endpoints()
     if freeze_depth is not None and pile.glued_bottom.any():
-        pos, quat, _ = _poses_from_endpoints(ep)
-        pile = _Pile(sp, pos, quat)  # release every rod
+        pos, quat, _ = poses_from_endpoints(ep)
+        pile = Pile(sp, pos, quat)  # release every rod
     if jostle:
         _jostle(pile, rng, n_shakes, tilt_deg)
     pile.set_drag(False)
@@ -938,11 +933,9 @@ def _geometric_contacts(packing: Packing, tol: float) -> np.ndarray:
     centers = ep.mean(axis=1)
     half = np.linalg.norm(ep[:, 1] - ep[:, 0], axis=1).max() / 2
     cand = cKDTree(centers).query_pairs(2 * half + d * (1 + tol), output_type="ndarray")
-    from ..topology._kernels import _segment_distance
-
     out = [
         (i, j) for i, j in cand
-        if _segment_distance(ep[i, 0], ep[i, 1], ep[j, 0], ep[j, 1]) < d * (1 + tol)
+        if segment_distances(ep[i, 0], ep[i, 1], ep[j, 0:1], ep[j, 1:2])[0] < d * (1 + tol)
     ]  # fmt: skip
     return np.asarray(out, dtype=np.int64).reshape(-1, 2)
 
@@ -1096,13 +1089,13 @@ def compress(
     if any(not 0 <= s <= schedule[0] for s in snaps_req):
         raise ValueError(f"snapshot_strains: must lie in [0, strain_max], got {snaps_req}")
     ep = packing.endpoints
-    pos, quat, length = _poses_from_endpoints(ep)
+    pos, quat, length = poses_from_endpoints(ep)
     d = packing.diameter
     fr = packing.meta.get("friction", 0.4) if friction is None else friction
     sp = SimParams(length, d, packing.container_diameter, friction=fr)
     h0 = pile_height(packing)
     z_start = float(ep[:, :, 2].max() + d)  # just above the highest rod: no initial overlap
-    pile = _Pile(sp, pos, quat, piston_z=z_start)
+    pile = Pile(sp, pos, quat, piston_z=z_start)
     pile.set_drag(False)
     pile.settle(max_time=0.5 * math.sqrt(length / GRAVITY))
     speed = 0.1 * math.sqrt(GRAVITY * d) if rate is None else rate * h0
@@ -1148,7 +1141,7 @@ def compress(
                              snaps, final, schedule)  # fmt: skip
 
 
-def _snapshot(pile: _Pile, packing: Packing, strain: float) -> Packing:
+def _snapshot(pile: Pile, packing: Packing, strain: float) -> Packing:
     meta = {k: v for k, v in packing.meta.items() if k != "contact_pairs"}
     meta["strain"] = float(strain)
     meta["contact_pairs"] = pile.contact_pairs().tolist()
@@ -1247,10 +1240,10 @@ def tension(
     top = (zmax > (1 - glue_depth) * h) & ~bottom
     if not top.any() or not bottom.any():
         raise ValueError("glue_depth: no rods in the top or bottom glue layer")
-    pos, quat, length = _poses_from_endpoints(ep)
+    pos, quat, length = poses_from_endpoints(ep)
     fr = packing.meta.get("friction", 0.4)
     sp = SimParams(length, d, packing.container_diameter, friction=fr, wall_friction=wall_friction)
-    pile = _Pile(sp, pos, quat, glued_bottom=bottom, glued_top=top)
+    pile = Pile(sp, pos, quat, glued_bottom=bottom, glued_top=top)
     pile.set_drag(False)
     pile.settle(max_time=0.5 * math.sqrt(length / GRAVITY))
     top_mask = np.zeros(pile.model.ngeom, bool)

@@ -13,9 +13,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._kernels import close_pairs, curves_to_segments_distance, pair_distance_and_link
+from ._kernels import (
+    _segment_distance,
+    close_pairs,
+    curves_to_segments_distance,
+    min_segment_distance,
+    pair_distance_and_link,
+)
 
-__all__ = ["Crossing", "CrossingDetector", "close_pair_proximity", "min_distance_to_segments"]
+__all__ = [
+    "Crossing",
+    "CrossingDetector",
+    "close_pair_proximity",
+    "min_distance_to_segments",
+    "polyline_distance",
+    "segment_distances",
+]
 
 
 def _stack(curves) -> np.ndarray:
@@ -124,3 +137,21 @@ class CrossingDetector:
         """Forget the previous sample (e.g. after a reset), keep what was recorded."""
         self._previous = None
         self._last_curves = None
+
+
+def polyline_distance(a, b) -> float:
+    """Minimum distance between two polylines ``(N, 3)`` and ``(M, 3)`` (exact segment–segment distances)."""
+    return float(
+        min_segment_distance(np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(b, dtype=float))
+    )
+
+
+def segment_distances(a0, a1, b0s, b1s) -> np.ndarray:
+    """Distance from the segment ``a0``–``a1`` to each segment ``b0s[i]``–``b1s[i]``."""
+    a0, a1 = np.asarray(a0, dtype=float), np.asarray(a1, dtype=float)
+    return np.array(
+        [
+            _segment_distance(a0, a1, np.asarray(b0, float), np.asarray(b1, float))
+            for b0, b1 in zip(b0s, b1s, strict=True)
+        ]
+    )

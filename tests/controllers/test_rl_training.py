@@ -191,7 +191,7 @@ def test_interrupted_runs_resume_where_they_stopped(tmp_path, monkeypatch):
 
 
 def test_documented_training_command_runs_with_its_progress_bar(tmp_path):
-    """README's `scripts/train_rl.py` command line, shortened to two strokes, with SB3's progress bar on (its
+    """The documented `scripts/train_rl.py` command line, shortened to two strokes, with SB3's progress bar on (its
     default): a fresh `pip install -e ".[dev,rl]"` must bring what the bar needs (tqdm and rich, issue 22)."""
     import subprocess
     import sys

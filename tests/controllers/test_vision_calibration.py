@@ -15,7 +15,7 @@ from hairbrush_env.hair import PRESETS
 
 
 def test_vision_calibrate_cli_ranks_presets(tmp_path):
-    # reduced: one pre-brushed state per wig, nominal + one jittered camera; the README run uses 3 × 3
+    # reduced: one pre-brushed state per wig, nominal + one jittered camera; the docs/policies.md run uses 3 × 3
     assert (
         main(["vision", "calibrate", "--seeds", "0", "--jitters", "2", "--out", str(tmp_path), "--quiet"])
         == 0
@@ -24,7 +24,7 @@ def test_vision_calibrate_cli_ranks_presets(tmp_path):
     assert summary["n_images"] == len(PRESETS) * 2 * 3
     assert summary["resolution"] == [640, 480]
     # Unclipped, R_c ranks the wigs like R/P. Clipped, it cannot do better than its analytic reading min(4 R/P, 1)
-    # (README, *Vision curliness*), which ties every preset from R/P = 0.25 on.
+    # (docs/policies.md, *Vision curliness*), which ties every preset from R/P = 0.25 on.
     rp = np.array([w.curliness for w in PRESETS.values()])
     best_clipped = spearmanr(rp, np.minimum(4.0 * rp, 1.0)).statistic
     for key, bound in (("spearman_rho", best_clipped - 1e-9), ("spearman_rho_unclipped", 0.9)):

@@ -1,7 +1,7 @@
 """Double-helix combing (thesis chapter 2): setup validation, geometry, eq. 2.8 cost, and reduced physics runs.
 
 Default-suite runs use short (6 cm), coarse (8 edges per pitch) helices; the full-size study (15 cm, 10 edges per
-pitch) is in the README and in the ``slow`` tests.
+pitch) is in docs/double_helix.md and in the ``slow`` tests.
 """
 
 from __future__ import annotations
@@ -314,7 +314,8 @@ def test_full_size_claim_1(full_size_runs):
 @pytest.mark.slow
 @pytest.mark.xfail(
     strict=True,
-    reason="known difference (README): quasi-statically (5 mm/s) the force-only flag sees no jam of the tight "
+    reason="known difference (docs/double_helix.md): quasi-statically (5 mm/s) the force-only flag sees no jam of "
+    "the tight "
     "P/r = 18 helix at mid-height insertion (force rises to a plateau, peak/level 1.01); claim 2 holds by the "
     "thesis's kink jams near the clamp (test_full_size_claim_2_tight_helices_kink_jam_near_the_clamp)",
 )
@@ -326,7 +327,8 @@ def test_full_size_claim_2_tight_helices_jam(full_size_runs):
 @pytest.mark.slow
 def test_full_size_tight_helices_bend_below_the_tine(full_size_runs):
     """The kink side of claim 2 (Fig. 2.2a): below the tine the tight helix's braid bends away from the vertical,
-    the loose one hangs straight. Measured (README): 16.5° for P/r = 18, 0.0° for P/r = 48 (no jam in the force
+    the loose one hangs straight. Measured (docs/double_helix.md): 16.5° for P/r = 18, 0.0° for P/r = 48 (no jam in
+    the force
     for either, and 16.5° stays below the 30° kink threshold)."""
     res = full_size_runs
     assert res[18, 1].bend_max > 10.0
@@ -338,7 +340,8 @@ def test_full_size_claim_4_long_strokes_kink():
     """Claim 4 by the thesis's kink criterion (Fig. 2.4: "below a certain link threshold, combing finishes without
     kink formation"): 4 pitches from the free end the braid stays straight, 12 pitches away it kinks and the tine
     breaks through at the kink (a kink jam, §2.4).
-    Measured (README): 1.5° and no break-through at q = 4; 38.9° and one kink jam at q = 12 (before its strand
+    Measured (docs/double_helix.md): 1.5° and no break-through at q = 4; 38.9° and one kink jam at q = 12 (before its
+    strand
     passage at x = 0.58)."""
     base = CombingSetup(P_over_r=24)
     short = run_combing(replace_setup(base, q=4))
@@ -351,7 +354,8 @@ def test_full_size_claim_4_long_strokes_kink():
 def test_full_size_claim_4_tall_helix_jams_only_far_from_the_free_end():
     """Claim 4 over the thesis's q range (Fig. 2.4 goes to q = 25), on a 30 cm helix (29.4 pitches): a short stroke
     neither kinks nor jams, the longest goes through kink jams and the force-only flag sees them too.
-    Measured (README): q = 6 bend 1.3°, peak/level 0.97; q = 25 bend 61.6°, 2 kink jams, peak/level 1.32."""
+    Measured (docs/double_helix.md): q = 6 bend 1.3°, peak/level 0.97; q = 25 bend 61.6°, 2 kink jams, peak/level
+    1.32."""
     base = CombingSetup(P_over_r=24, height=0.3)
     short = run_combing(replace_setup(base, q=6))
     long = run_combing(replace_setup(base, q=25))
@@ -369,7 +373,8 @@ def clamp_runs() -> dict[float, CombingResult]:
 def test_full_size_claim_2_tight_helices_kink_jam_near_the_clamp(clamp_runs):
     """Claim 2 by the thesis's jam cycle (§2.4: a kink "accompanied by a peak in applied force", then "the tine
     breaks through and the force decreases"; loose helices never cross "the threshold needed for kinking"), with the
-    tine inserted near the clamp as in the thesis's simulations. Measured (README): 4 kink jams at P/r = 24, none at
+    tine inserted near the clamp as in the thesis's simulations. Measured (docs/double_helix.md): 4 kink jams at P/r
+    = 24, none at
     P/r = 36 and 48 (whose force still drops 4 and 3 times, with the braid bent ≤ 12.5°)."""
     assert clamp_runs[24].jammed_by_kink and clamp_runs[24].kinked
     assert clamp_runs[36].kink_jams == 0 and clamp_runs[48].kink_jams == 0
@@ -381,7 +386,8 @@ def test_full_size_claim_2_tight_helices_kink_jam_near_the_clamp(clamp_runs):
 def test_full_size_claim_3_total_link_leaves(clamp_runs, p_over_r):
     """Claim 3 on full-size helices with the thesis's insertion near the clamp: total Lk ends at ≤ 10 % of Lk0.
 
-    Measured (README): 14.4 % for P/r = 18 (one strand passage; 4.0 % with 4× stiffer contacts), 4.8 / 7.3 / 9.97 %
+    Measured (docs/double_helix.md): 14.4 % for P/r = 18 (one strand passage; 4.0 % with 4× stiffer contacts), 4.8 /
+    7.3 / 9.97 %
     for P/r = 24 / 36 / 48; the two with margin and no passage are asserted here.
     """
     res = clamp_runs[p_over_r]

@@ -122,9 +122,10 @@ def test_run_repeated_writes_resumable_series(tmp_path):
         (["--wigs", "bogus"], "bogus"),
     ],
 )
-def test_repeat_command_refuses_bad_input_before_simulating(argv, flag, tmp_path):
+def test_repeat_command_refuses_bad_input_before_simulating(argv, flag, tmp_path, capsys):
     from hairbrush_env.cli import main
 
-    with pytest.raises(SystemExit, match=flag):
+    with pytest.raises(SystemExit) as exc:
         main(["repeat", "--out", str(tmp_path), "--quiet", *argv])
+    assert exc.value.code == 2 and flag in capsys.readouterr().err
     assert not (tmp_path / "repeat.csv").exists()

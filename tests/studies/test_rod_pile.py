@@ -207,12 +207,12 @@ def test_wall_friction_is_the_walls_own(wall_friction, held):
     # A vertical rod pressed against the wall by a sideways gravity component 5 g slides down unless μ_wall ≥ 0.2.
     # MuJoCo gives a contact the larger of the two geoms' friction unless priorities differ, so without the walls'
     # priority the rods' μ = 0.4 would hold the rod on a frictionless wall.
-    from hairbrush_env.studies.rod_pile import SimParams, _Pile
+    from hairbrush_env.studies.rod_pile import Pile, SimParams
 
     d = L / ALPHA
     sp = SimParams(L, d, 1.5 * L, wall_friction=wall_friction)
     z0 = L / 2 + 0.2 * L
-    pile = _Pile(sp, np.array([[0.75 * L - 0.51 * d, 0.0, z0]]), np.array([[1.0, 0.0, 0.0, 0.0]]))
+    pile = Pile(sp, np.array([[0.75 * L - 0.51 * d, 0.0, z0]]), np.array([[1.0, 0.0, 0.0, 0.0]]))
     pile.set_drag(False)
     pile.model.opt.gravity[:] = [5 * 9.81, 0.0, -9.81]
     pile.step(int(0.1 / sp.dt))  # free fall to the floor takes 0.045 s

@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .census import interaction_census
-from .gauss import link_current, link_density, linking_number
+from ..topology.census import interaction_census
+from ..topology.gauss import link_current, link_density, linking_number
 
 
 @dataclass(frozen=True)
