@@ -501,6 +501,15 @@ class BrushingSim:
         """World position of the brush TCP (mid-bristle)."""
         return self.data.site_xpos[self._tcp_site].copy()
 
+    @property
+    def pull_end_z(self) -> float:
+        """Lowest TCP height of a pull [m]: the pull floor (``SceneConfig.pull_floor_z``), or without one 1 cm below
+        the brush's clearance of the rest free ends (at the workspace's bottom at the lowest)."""
+        floor = self.config.pull_floor_z
+        if floor is not None:
+            return float(floor)
+        return max(self.hair_bottom - self.brush.half_height - 0.01, _WORKSPACE_Z[0])
+
     def brush_below_hair(self) -> bool:
         """Whether the whole brush (with the contact reach) is below every strand: a pull has gone through."""
         clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
@@ -723,10 +732,7 @@ class BrushingSim:
         # The pull ends once the whole brush is below every strand. With a pull floor it goes on until then, wherever
         # the brush has dragged the free ends (curls straighten under a jammed brush and hang far lower than at
         # rest), down to that floor; without one it ends 1 cm below the rest free ends at the latest.
-        floor = self.config.pull_floor_z
-        z_end = (
-            max(self.hair_bottom - self.brush.half_height - 0.01, _WORKSPACE_Z[0]) if floor is None else floor
-        )
+        z_end = self.pull_end_z
         clear = self.brush.half_height + self._contact_reach + _FREE_CLEARANCE
         fast = self.config.approach_speed
         free = self.config.free_speed

@@ -53,11 +53,12 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
 
     **Full passes and the finish rule.** A *full pass* is the velocity-level full stroke: the brush inside the hair
     (TCP within `PASS_DEPTH_TOLERANCE` of the stroke depth) from the full stroke's start height (within
-    `PASS_START_TOLERANCE`) straight down until the whole brush is below every strand, never moving up or out on the
-    way. Thesis eq. 3.4 ends the episode when two consecutive full passes read maximum forces within 0.4 N. Without
-    it the task could only end by detangling to `detangled_fraction`, which brushing seldom reaches, so an agent
-    that brushes well and one that never touches the hair paid the same time cost for the whole episode, and any
-    brushing that tangled a little or hurt scored below doing nothing: the stalling hole (issue #12).
+    `PASS_START_TOLERANCE`) straight down until the whole brush is below every strand or at the pull floor
+    (`BrushingSim.pull_end_z`, where HairBrush-v0's pull ends too), never moving up or out on the way. Thesis eq. 3.4
+    ends the episode when two consecutive full passes read maximum forces within 0.4 N. Without it the task could
+    only end by detangling to `detangled_fraction`, which brushing seldom reaches, so an agent that brushes well and
+    one that never touches the hair paid the same time cost for the whole episode, and any brushing that tangled a
+    little or hurt scored below doing nothing: the stalling hole (issue #12).
 
     ## Starting State
     A pre-brushed wig (one of `n_wig_states` cached states picked by the seed); brush above the hair at the
@@ -207,7 +208,9 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
             self._pass_fmax = None  # left the hair or went back up: not a full pass
             return False
         self._pass_fmax = max(self._pass_fmax, force)
-        if not sim.brush_below_hair():
+        # HairBrush-v0's pull ends the same way: below every strand, or at the pull floor (dragged curls can hang
+        # below the workspace)
+        if not (sim.brush_below_hair() or p[2] <= sim.pull_end_z + PASS_START_TOLERANCE):
             return False
         f, prev = self._pass_fmax, self._prev_pass_fmax
         self._pass_fmax, self._prev_pass_fmax = None, f

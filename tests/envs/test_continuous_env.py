@@ -103,7 +103,7 @@ def _brush_down_through(env) -> np.ndarray:
             return np.array([0.0, 1.0], np.float32)
         state["phase"] = "down"
     if state["phase"] == "down":
-        if not sim.brush_below_hair():
+        if not (sim.brush_below_hair() or p[2] <= sim.pull_end_z + 0.005):
             return np.array([-0.5, 0.0], np.float32)  # 0.1 m/s, HairBrush-v0's stroke speed
         state["phase"] = "up"
     return np.array([0.0, -1.0], np.float32)

@@ -1,18 +1,13 @@
-"""Locate the MJCF parts (``assets/<part>/<part>.xml``) and load them as :class:`mujoco.MjSpec`.
+"""The MJCF parts (``hairbrush_env/assets/<part>/<part>.xml``, menagerie style) and their loader.
 
-The parts live at the repository top level (``<repo>/assets``), next to the package, so an editable install
-and a source checkout find them relative to this file.  Resolution order of :data:`ASSETS_DIR`:
-
-1. ``$HAIRBRUSH_ASSETS_DIR`` if set (an explicit override, e.g. for a relocated asset tree);
-2. ``<repo>/assets`` next to the package directory (source tree / editable install);
-3. ``hairbrush_env/assets`` inside the installed package, via :mod:`importlib.resources` (for a wheel
-   that ships the assets as package data).
+The parts ship inside the package (package data), so an editable install, a wheel and a source checkout all find
+them next to this file. ``$HAIRBRUSH_ASSETS_DIR`` overrides the location (e.g. for a relocated or modified asset
+tree).
 """
 
 from __future__ import annotations
 
 import os
-from importlib import resources
 from pathlib import Path
 
 import mujoco
@@ -27,15 +22,7 @@ def _resolve_assets_dir() -> Path:
     env = os.environ.get("HAIRBRUSH_ASSETS_DIR")
     if env:
         return Path(env).expanduser().resolve()
-    repo_assets = Path(__file__).resolve().parent.parent / "assets"
-    if (repo_assets / "arm").is_dir():
-        return repo_assets
-    packaged = resources.files("hairbrush_env") / "assets"
-    if packaged.is_dir():
-        # A regular installed package is a real directory, so the Traversable is a path.
-        return Path(str(packaged))
-    # Returned anyway so that error messages name the place that was looked at.
-    return repo_assets
+    return Path(__file__).resolve().parent
 
 
 ASSETS_DIR: Path = _resolve_assets_dir()
