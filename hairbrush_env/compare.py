@@ -19,16 +19,16 @@ from .io import read_csv_rows, write_csv_rows, write_text
 
 COLUMNS = [
     "wig",
-    "curliness",
+    "R_over_P",
     "policy",
     "abort_force",
     "episode",
     "seed",
     "max_force",
-    "time",
+    "sim_time",
     "strokes",
     "pain_violations",
-    "final_entanglement",
+    "entanglement_final",
     "entanglement_initial",
     "total_reward",
     "diverged",
@@ -40,10 +40,10 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
     rows = read_csv_rows(
         path,
         floats=(
-            "curliness",
+            "R_over_P",
             "max_force",
-            "time",
-            "final_entanglement",
+            "sim_time",
+            "entanglement_final",
             "entanglement_initial",
             "total_reward",
         ),
@@ -153,7 +153,7 @@ def run_grid(
     finally:
         bar.close()
         _close_envs()
-    rows.sort(key=lambda r: (r["curliness"], r["wig"], r["policy"], r["episode"]))
+    rows.sort(key=lambda r: (r["R_over_P"], r["wig"], r["policy"], r["episode"]))
     write_csv_rows(csv_path, rows, COLUMNS)
     write_text(out / "summary.md", summary_markdown(rows))
     plot_grid(rows, out / "max_force_vs_curliness.png", out / "time_vs_curliness.png")
@@ -167,12 +167,12 @@ def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
         groups.setdefault((r["wig"], r["policy"]), []).append(r)
     table = []
     for (wig, policy), rs in groups.items():
-        entry: dict[str, Any] = {"wig": wig, "policy": policy, "curliness": rs[0]["curliness"], "n": len(rs)}
-        for key in ("max_force", "time", "strokes", "pain_violations", "final_entanglement"):
+        entry: dict[str, Any] = {"wig": wig, "policy": policy, "R_over_P": rs[0]["R_over_P"], "n": len(rs)}
+        for key in ("max_force", "sim_time", "strokes", "pain_violations", "entanglement_final"):
             vals = np.array([r[key] for r in rs], dtype=float)
             entry[key] = (float(vals.mean()), float(vals.std(ddof=1)) if len(vals) > 1 else 0.0)
         table.append(entry)
-    table.sort(key=lambda e: (e["curliness"], e["wig"], e["policy"]))
+    table.sort(key=lambda e: (e["R_over_P"], e["wig"], e["policy"]))
     return table
 
 
@@ -182,10 +182,10 @@ def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
         "|---|---:|---|---:|---:|---:|---:|---:|---:|",
     ]
     for e in summarize(rows):
-        cells = [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in ("max_force", "time", "strokes"))]
-        cells += [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in ("pain_violations", "final_entanglement"))]
+        cells = [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in ("max_force", "sim_time", "strokes"))]
+        cells += [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in ("pain_violations", "entanglement_final"))]
         lines.append(
-            f"| {e['wig']} | {e['curliness']:.2f} | {e['policy']} | {e['n']} | " + " | ".join(cells) + " |"
+            f"| {e['wig']} | {e['R_over_P']:.2f} | {e['policy']} | {e['n']} | " + " | ".join(cells) + " |"
         )
     return "\n".join(lines) + "\n"
 
@@ -198,13 +198,13 @@ def plot_grid(rows: Sequence[dict[str, Any]], force_png: str | Path, time_png: s
     policies = sorted({e["policy"] for e in table})
     for key, path, label in (
         ("max_force", force_png, "max force [N]"),
-        ("time", time_png, "brushing time [s]"),
+        ("sim_time", time_png, "brushing time [s]"),
     ):
         fig, axes = new_figure(1, 1, width=6.0, height=4.2)
         ax = axes[0, 0]
         for i, pol in enumerate(policies):
             es = [e for e in table if e["policy"] == pol]
-            x = [e["curliness"] for e in es]
+            x = [e["R_over_P"] for e in es]
             m = np.array([e[key][0] for e in es])
             s = np.array([e[key][1] for e in es])
             ax.errorbar(x, m, yerr=s, fmt="o-", color=PALETTE[i % len(PALETTE)], capsize=3, label=pol)

@@ -23,14 +23,14 @@ import numpy as np
 
 from .io import read_csv_rows, write_csv_rows, write_text
 
-COLUMNS = ["wig", "curliness", "brush_length", "speed", "seed", "max_force", "sim_time", "diverged"]
+COLUMNS = ["wig", "R_over_P", "brush_length", "speed", "seed", "max_force", "sim_time", "diverged"]
 
 
 def read_strokes(path: str | Path) -> list[dict[str, Any]]:
     """Rows of a ``strokes.csv`` with numeric columns converted."""
     return read_csv_rows(
         path,
-        floats=("curliness", "brush_length", "speed", "max_force", "sim_time"),
+        floats=("R_over_P", "brush_length", "speed", "max_force", "sim_time"),
         ints=("seed",),
         bools=("diverged",),
     )
@@ -114,7 +114,7 @@ def measure_strokes(
             rows.append(
                 {
                     "wig": wig,
-                    "curliness": sim.curliness_true,
+                    "R_over_P": sim.curliness_true,
                     "brush_length": b_l,
                     "speed": speed,
                     "seed": seed,
@@ -131,7 +131,7 @@ def measure_strokes(
         bar.close()
         for sim in sims.values():
             sim.close()
-    rows.sort(key=lambda r: (r["curliness"], r["wig"], r["brush_length"], r["speed"], r["seed"]))
+    rows.sort(key=lambda r: (r["R_over_P"], r["wig"], r["brush_length"], r["speed"], r["seed"]))
     if out is not None:
         write_csv_rows(Path(out) / "strokes.csv", rows, COLUMNS)
         write_text(Path(out) / "summary.md", summary_markdown(rows))
@@ -151,7 +151,7 @@ def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
         table.append(
             {
                 "wig": wig,
-                "curliness": rs[0]["curliness"],
+                "R_over_P": rs[0]["R_over_P"],
                 "brush_length": b_l,
                 "speed": speed,
                 "n": len(rs),
@@ -159,7 +159,7 @@ def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
                 "std": float(f.std(ddof=1)) if len(f) > 1 else 0.0,
             }
         )
-    table.sort(key=lambda e: (e["curliness"], e["wig"], e["brush_length"], e["speed"]))
+    table.sort(key=lambda e: (e["R_over_P"], e["wig"], e["brush_length"], e["speed"]))
     return table
 
 
@@ -167,7 +167,7 @@ def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
     lines = ["| wig | R/P | b_l | speed [m/s] | n | max force [N] |", "|---|---:|---:|---:|---:|---:|"]
     for e in summarize(rows):
         lines.append(
-            f"| {e['wig']} | {e['curliness']:.2f} | {e['brush_length']:.2f} | {e['speed']:.3f} | {e['n']} | "
+            f"| {e['wig']} | {e['R_over_P']:.2f} | {e['brush_length']:.2f} | {e['speed']:.3f} | {e['n']} | "
             f"{e['mean']:.2f} ± {e['std']:.2f} |"
         )
     return "\n".join(lines) + "\n"
@@ -187,7 +187,7 @@ def plot_strokes(rows: Sequence[dict[str, Any]], out: str | Path) -> list[Path]:
     ):
         fig, axes = new_figure(1, 1, width=6.0, height=4.2)
         ax = axes[0, 0]
-        series = sorted({(e["curliness"], e["wig"], e[other]) for e in table})
+        series = sorted({(e["R_over_P"], e["wig"], e[other]) for e in table})
         for i, (_, wig, o) in enumerate(series):
             es = sorted((e for e in table if e["wig"] == wig and e[other] == o), key=lambda e: e[x_key])
             label = f"{wig} ({other.replace('_', ' ')} {o:g})"

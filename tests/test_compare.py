@@ -16,16 +16,16 @@ from hairbrush_env.io import write_csv_rows
 def _row(wig: str, policy: str, episode: int, max_force: float, curliness: float = 0.5) -> dict:
     return {
         "wig": wig,
-        "curliness": curliness,
+        "R_over_P": curliness,
         "policy": policy,
         "abort_force": None if policy == "naive" else 10.0,
         "episode": episode,
         "seed": episode,
         "max_force": max_force,
-        "time": 10.0 + episode,
+        "sim_time": 10.0 + episode,
         "strokes": 3 + episode,
         "pain_violations": int(max_force >= 10.0),
-        "final_entanglement": 1.5,
+        "entanglement_final": 1.5,
         "entanglement_initial": 4.0,
         "total_reward": -0.25,
         "diverged": False,
@@ -118,7 +118,7 @@ def test_naive_finishes_faster_than_sigmoid(tmp_path) -> None:
     )
     by_policy = {r["policy"]: r for r in rows}
     assert not any(r["diverged"] for r in rows)
-    assert by_policy["naive"]["time"] < by_policy["sigmoid"]["time"], by_policy
+    assert by_policy["naive"]["sim_time"] < by_policy["sigmoid"]["sim_time"], by_policy
 
 
 def test_unknown_names_fail_before_anything_is_simulated(tmp_path) -> None:

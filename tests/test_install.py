@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -16,8 +17,11 @@ ROOT = Path(__file__).resolve().parents[1]
 def installed(tmp_path_factory) -> Path:
     """The package built as a wheel and installed (no dependencies) into a directory of its own."""
     work = tmp_path_factory.mktemp("install")
+    # a copy of the source: building in place would leave build/ in the checkout
+    junk = shutil.ignore_patterns(".git", ".venv", "runs", "build", "*.egg-info", "__pycache__", ".*_cache")
+    shutil.copytree(ROOT, work / "src", ignore=junk)
     pip = [sys.executable, "-m", "pip", "--disable-pip-version-check", "-q"]
-    subprocess.run([*pip, "wheel", "--no-deps", "--no-build-isolation", "-w", str(work / "dist"), str(ROOT)],
+    subprocess.run([*pip, "wheel", "--no-deps", "--no-build-isolation", "-w", str(work / "dist"), str(work / "src")],
                    check=True, capture_output=True, timeout=600)  # fmt: skip
     (wheel,) = (work / "dist").glob("hairbrush_env-*.whl")
     subprocess.run([*pip, "install", "--no-deps", "--target", str(work / "site"), str(wheel)],

@@ -55,7 +55,7 @@ def test_outputs_and_resume(tmp_path, monkeypatch) -> None:
 
 def test_summary_statistics() -> None:
     rows = [
-        {"wig": "curly", "curliness": 0.5, "brush_length": 1.0, "speed": 0.1, "seed": s, "max_force": f,
+        {"wig": "curly", "R_over_P": 0.5, "brush_length": 1.0, "speed": 0.1, "seed": s, "max_force": f,
          "sim_time": 1.0, "diverged": d}
         for s, f, d in ((0, 2.0, False), (1, 4.0, False), (2, 100.0, True))
     ]  # fmt: skip

@@ -96,7 +96,7 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
         print(
             f"episode {ep['episode']}: {ep['strokes']} strokes, max force {ep['max_force']:.2f} N, "
             f"pain violations {ep['pain_violations']}, entanglement {ep['entanglement_initial']:.2f} -> "
-            f"{ep['final_entanglement']:.2f}, time {ep['time']:.1f} s{' (DIVERGED)' if ep['diverged'] else ''}"
+            f"{ep['entanglement_final']:.2f}, time {ep['sim_time']:.1f} s{' (DIVERGED)' if ep['diverged'] else ''}"
         )
     if args.json:
         write_json(args.json, {"env": args.env, "wig": args.wig, "policy": args.policy, "episodes": episodes})
