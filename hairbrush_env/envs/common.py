@@ -125,6 +125,21 @@ def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float):
 
 
 OBS_MODES = ("state", "image", "state+image")
+#: Constructor arguments both envs take and :meth:`BrushEnvBase._setup` checks.
+SHARED_ENV_ARGS = (
+    "wig",
+    "obs_mode",
+    "render_mode",
+    "width",
+    "height",
+    "force_threshold",
+    "n_wig_states",
+    "wig_seeds",
+    "state_cache_dir",
+    "detangled_fraction",
+    "reward",
+    "load_cell_noise",
+)
 
 
 class BrushEnvBase(gym.Env):

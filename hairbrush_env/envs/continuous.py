@@ -15,6 +15,7 @@ from .common import (
     LOAD_CELL_CAPACITY_N,
     MAX_COUNT,
     PAIN_THRESHOLD_N,
+    SHARED_ENV_ARGS,
     BrushEnvBase,
     RewardConfig,
     check_action,
@@ -96,37 +97,10 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         reward: RewardConfig | None = None,
         load_cell_noise: float = 0.02,
     ) -> None:
-        EzPickle.__init__(
-            self,
-            wig=wig,
-            obs_mode=obs_mode,
-            render_mode=render_mode,
-            width=width,
-            height=height,
-            force_threshold=force_threshold,
-            max_vertical_speed=max_vertical_speed,
-            max_depth_speed=max_depth_speed,
-            n_wig_states=n_wig_states,
-            wig_seeds=wig_seeds,
-            state_cache_dir=state_cache_dir,
-            detangled_fraction=detangled_fraction,
-            reward=reward,
-            load_cell_noise=load_cell_noise,
-        )
-        self._setup(
-            wig=wig,
-            obs_mode=obs_mode,
-            render_mode=render_mode,
-            width=width,
-            height=height,
-            force_threshold=force_threshold,
-            n_wig_states=n_wig_states,
-            wig_seeds=wig_seeds,
-            state_cache_dir=state_cache_dir,
-            detangled_fraction=detangled_fraction,
-            reward=reward,
-            load_cell_noise=load_cell_noise,
-        )
+        # the constructor's arguments, written once: pickled by EzPickle, the shared ones checked by _setup
+        args = {k: v for k, v in locals().items() if k not in ("self", "__class__")}
+        EzPickle.__init__(self, **args)
+        self._setup(**{k: args[k] for k in SHARED_ENV_ARGS})
         self.max_vertical_speed = check_positive("max_vertical_speed", max_vertical_speed)
         self.max_depth_speed = check_positive("max_depth_speed", max_depth_speed)
 

@@ -15,6 +15,7 @@ from .common import (
     LOAD_CELL_CAPACITY_N,
     MAX_COUNT,
     PAIN_THRESHOLD_N,
+    SHARED_ENV_ARGS,
     BrushEnvBase,
     RewardConfig,
     check_action,
@@ -144,39 +145,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         reward: RewardConfig | None = None,
         load_cell_noise: float = 0.02,
     ) -> None:
-        EzPickle.__init__(
-            self,
-            wig=wig,
-            obs_mode=obs_mode,
-            render_mode=render_mode,
-            width=width,
-            height=height,
-            force_threshold=force_threshold,
-            abort_force=abort_force,
-            stroke_speed=stroke_speed,
-            min_brush_length=min_brush_length,
-            trace_length=trace_length,
-            n_wig_states=n_wig_states,
-            wig_seeds=wig_seeds,
-            state_cache_dir=state_cache_dir,
-            detangled_fraction=detangled_fraction,
-            reward=reward,
-            load_cell_noise=load_cell_noise,
-        )
-        self._setup(
-            wig=wig,
-            obs_mode=obs_mode,
-            render_mode=render_mode,
-            width=width,
-            height=height,
-            force_threshold=force_threshold,
-            n_wig_states=n_wig_states,
-            wig_seeds=wig_seeds,
-            state_cache_dir=state_cache_dir,
-            detangled_fraction=detangled_fraction,
-            reward=reward,
-            load_cell_noise=load_cell_noise,
-        )
+        # the constructor's arguments, written once: pickled by EzPickle, the shared ones checked by _setup
+        args = {k: v for k, v in locals().items() if k not in ("self", "__class__")}
+        EzPickle.__init__(self, **args)
+        self._setup(**{k: args[k] for k in SHARED_ENV_ARGS})
         if not (0.0 < min_brush_length < 1.0):
             raise ValueError(f"min_brush_length: must be in (0, 1), got {min_brush_length!r}")
         self.stroke_speed = check_positive("stroke_speed", stroke_speed)
