@@ -242,7 +242,10 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False):
     done_steps, segment = int(state["num_timesteps"]), int(state.get("segment", -1)) + 1
     if done_steps >= cfg.total_timesteps:
         print(f"{out}: already trained {done_steps} >= {cfg.total_timesteps} steps; nothing to do")
-        return load_checkpoint(ckpt, getattr(sb3, cfg.algo.upper()), None)
+        model = load_checkpoint(ckpt, getattr(sb3, cfg.algo.upper()), None)
+        with atomic_path(out / "model.zip") as tmp:
+            model.save(tmp)
+        return model
     if resume:
         truncate_logs(out, done_steps, float(state["wall_time"]))
     vec_cls = SubprocVecEnv if (cfg.vec_env == "subproc" and cfg.n_envs > 1) else DummyVecEnv
