@@ -143,7 +143,7 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
         "--video",
         metavar="OUT.webm",
         type=output_file(".webm", ".mp4"),
-        help="write the webcam video (10 fps): .webm (VP9, plays in browsers) or .mp4 (mp4v, video players only)",
+        help="write the webcam video (10 fps): .webm (VP8, plays in browsers) or .mp4 (mp4v, video players only)",
     )
     add_webcam_args(p)
     p.add_argument(
