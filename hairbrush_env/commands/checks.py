@@ -82,6 +82,20 @@ def number_list(item: Callable[[str], float] = positive) -> Callable[[str], list
     return parse
 
 
+def wig_choices() -> list[str]:
+    """Every wig name the commands accept (presets, then the held-out wigs), for help texts."""
+    from ..hair import HELD_OUT_WIGS, PRESETS
+
+    return [*PRESETS, *HELD_OUT_WIGS]
+
+
+def policy_choices() -> list[str]:
+    """The registered policy names, for help texts."""
+    from ..policies import available_policies
+
+    return sorted(available_policies())
+
+
 def wig_names(*, allow_all: bool = True, allow_held_out: bool = True) -> Callable[[str], list[str]]:
     """Comma-separated wig names (presets or held-out wigs); ``all`` → every preset, ``held_out`` → the held-out
     wigs. Unknown names are refused listing the valid ones."""

@@ -5,7 +5,18 @@ from __future__ import annotations
 import argparse
 
 from . import add_webcam_args
-from .checks import count, number, number_list, output_dir, policy_names, positive, seed, wig_names
+from .checks import (
+    count,
+    number,
+    number_list,
+    output_dir,
+    policy_choices,
+    policy_names,
+    positive,
+    seed,
+    wig_choices,
+    wig_names,
+)
 
 
 def _cmd_compare(args: argparse.Namespace) -> int:
@@ -37,13 +48,13 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
         "--wigs",
         type=wig_names(),
         default="all",
-        help="comma-separated wig names, 'all' presets or 'held_out' (RL's test wigs)",
+        help=f"comma-separated wig names ({', '.join(wig_choices())}), 'all' presets or 'held_out' (RL's test wigs)",
     )
     p.add_argument(
         "--policies",
         type=policy_names,
         default="sigmoid,naive,full",
-        help="comma-separated policy names or sb3:DIR",
+        help=f"comma-separated policy names ({', '.join(policy_choices())}) or sb3:DIR",
     )
     p.add_argument("--episodes", type=count, default=3, help="episodes per (wig, policy)")
     p.add_argument("--seed", type=seed, default=0, help="episode k uses seed S + k for every policy")

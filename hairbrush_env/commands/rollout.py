@@ -5,19 +5,7 @@ from __future__ import annotations
 import argparse
 
 from . import add_webcam_args
-from .checks import count, output_file, policy_name, seed, wig_name
-
-
-def _wig_choices() -> list[str]:
-    from ..hair import HELD_OUT_WIGS, PRESETS
-
-    return [*PRESETS, *HELD_OUT_WIGS]
-
-
-def available_policies() -> list[str]:
-    from ..policies import available_policies as registry
-
-    return sorted(registry())
+from .checks import count, output_file, policy_choices, policy_name, seed, wig_choices, wig_name
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
@@ -120,12 +108,12 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--env", default="HairBrush-v0", choices=["HairBrush-v0", "HairBrushContinuous-v0"], help="env id"
     )
-    p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(_wig_choices())}")
+    p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(wig_choices())}")
     p.add_argument(
         "--policy",
         type=policy_name,
         default="full",
-        help=f"policy: {', '.join(available_policies())}, or sb3:DIR",
+        help=f"policy: {', '.join(policy_choices())}, or sb3:DIR",
     )
     p.add_argument("--episodes", type=count, default=1, help="episodes to run")
     p.add_argument("--seed", type=seed, default=0, help="episode k uses seed S + k")
