@@ -105,12 +105,12 @@ def held_out_eval_callback(
 
         def _on_training_start(self) -> None:
             done = {int(r["timesteps"]) for r in read_evaluations(self.csv_path)}
-            # evaluate at the start of a fresh run (the "first evaluation" a learning curve is judged against)
-            self.next_eval = (
-                self.num_timesteps if self.num_timesteps not in done else self._after(self.num_timesteps)
-            )
-            if self.num_timesteps == 0 and 0 not in done:
+            if not done:
+                # the first evaluation, before any update: what a learning curve is judged against
                 self.evaluate()
+            else:
+                # a resumed run keeps the schedule: the next multiple of ``every`` after the last evaluation
+                self.next_eval = self._after(max(done))
 
         def _after(self, steps: int) -> int:
             return (steps // every + 1) * every

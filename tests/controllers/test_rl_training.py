@@ -186,6 +186,9 @@ def test_interrupted_runs_resume_where_they_stopped(tmp_path, monkeypatch):
     evals = read_evaluations(tmp_path / "eval" / "held_out.csv")
     at = [int(r["timesteps"]) for r in evals]
     assert at[0] == 0 and at == sorted(set(at)) and at[-1] >= 32  # first evaluation before any update
+    assert all(
+        t % 16 == 0 for t in at
+    )  # every --eval-freq steps, also across resumes (no extra one at a resume)
     assert json.loads((tmp_path / "config.json").read_text())["wig"] == "test_rl_tiny"
     assert plot_learning_curves(tmp_path).exists()
 
