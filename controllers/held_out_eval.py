@@ -46,6 +46,19 @@ def read_evaluations(path: str | Path) -> list[dict[str, float | str]]:
         ]
 
 
+def evaluation_means(path: str | Path) -> list[dict[str, float]]:
+    """One row per evaluation of ``eval/held_out.csv``: ``timesteps`` and the means over its episodes of
+    ``return``, ``pain_violations``, ``strokes``, ``entanglement_left`` and ``finished``."""
+    by_step: dict[float, list[dict]] = {}
+    for r in read_evaluations(path):
+        by_step.setdefault(float(r["timesteps"]), []).append(r)
+    keys = ("return", "pain_violations", "strokes", "entanglement_left", "finished")
+    return [
+        {"timesteps": t} | {k: float(np.mean([float(r[k]) for r in rows])) for k in keys}
+        for t, rows in sorted(by_step.items())
+    ]
+
+
 def run_episodes(model, venv, episodes: int, seed: int) -> list[dict[str, float | str]]:
     """``episodes`` deterministic episodes on every worker of ``venv`` (worker i resets with ``seed + i`` first)."""
     n = venv.num_envs

@@ -50,18 +50,11 @@ def training_episodes(run_dir: str | Path) -> list[dict[str, float]]:
 
 
 def evaluations(run_dir: str | Path) -> list[dict[str, float]]:
-    """Held-out evaluations of ``run_dir`` (``eval/held_out.csv``), one row per evaluation: ``timesteps``, the mean
-    ``return``, ``pain_violations``, ``strokes``, ``entanglement_left`` and ``finished`` over its episodes."""
-    from .held_out_eval import read_evaluations
+    """Held-out evaluations of ``run_dir`` (``eval/held_out.csv``), one row per evaluation (means over its
+    episodes, :func:`controllers.held_out_eval.evaluation_means`)."""
+    from .held_out_eval import evaluation_means
 
-    by_step: dict[float, list[dict]] = {}
-    for r in read_evaluations(Path(run_dir) / "eval" / "held_out.csv"):
-        by_step.setdefault(float(r["timesteps"]), []).append(r)
-    keys = ("return", "pain_violations", "strokes", "entanglement_left", "finished")
-    return [
-        {"timesteps": t} | {k: float(np.mean([float(r[k]) for r in rows])) for k in keys}
-        for t, rows in sorted(by_step.items())
-    ]
+    return evaluation_means(Path(run_dir) / "eval" / "held_out.csv")
 
 
 def training_steps(run_dir: str | Path) -> list[dict[str, float]]:

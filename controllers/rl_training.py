@@ -133,30 +133,21 @@ def _step_log_callback(path: Path):
 def training_wigs(wig: Any) -> list[Any]:
     """The wigs of a wig argument: a WigConfig → itself; ``"train"`` → :data:`hair.TRAIN_WIGS`; ``"held_out"`` →
     :data:`hair.HELD_OUT_WIGS`; ``"wavy,curly"`` → those names (validated)."""
-    from hairbrush_env.hair import HELD_OUT_WIGS, PRESETS, TRAIN_WIGS
+    from hairbrush_env.hair import wig_names
 
     if not isinstance(wig, str):
         return [wig]
-    if wig == "train":
-        return list(TRAIN_WIGS)
-    if wig == "held_out":
-        return list(HELD_OUT_WIGS)
-    names = [w.strip() for w in wig.split(",") if w.strip()]
-    bad = [w for w in names if w not in PRESETS and w not in HELD_OUT_WIGS]
-    if not names or bad:
-        raise ValueError(
-            f"wig: unknown name(s) {bad or [wig]!r}; known: 'train', 'held_out', {sorted(PRESETS)}, "
-            f"{sorted(HELD_OUT_WIGS)}"
-        )
-    return names
+    try:
+        return wig_names(wig, sets=("train", "held_out"))
+    except ValueError as exc:
+        raise ValueError(f"wig: {exc}") from None
 
 
 def wig_seeds_for(wig: Any) -> tuple[int, ...]:
-    """Shake seeds of a wig set: the held-out seeds for held-out wigs, the training seeds otherwise."""
-    from hairbrush_env.hair import HELD_OUT_SEEDS, HELD_OUT_WIGS, TRAIN_WIG_SEEDS
+    """Shake seeds of a wig set (:func:`hairbrush_env.hair.brushing_seeds`)."""
+    from hairbrush_env.hair import brushing_seeds
 
-    names = [w for w in training_wigs(wig) if isinstance(w, str)]
-    return HELD_OUT_SEEDS if names and all(w in HELD_OUT_WIGS for w in names) else TRAIN_WIG_SEEDS
+    return brushing_seeds(training_wigs(wig))
 
 
 def _vec_env(env_id, worker_wigs, seed, env_kwargs, vec_cls, monitor_dir, monitor_prefix="0"):
@@ -218,7 +209,7 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False):
     from stable_baselines3.common.callbacks import CallbackList
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
-    from .held_out_eval import held_out_eval_callback, read_evaluations
+    from .held_out_eval import evaluation_means, held_out_eval_callback
     from .rl_checkpoint import (
         appending_csv_logger,
         checkpoint_callback,
@@ -281,10 +272,8 @@ def train(cfg: TrainConfig, out: str | Path, *, resume: bool = False):
         checkpoints = checkpoint_callback(out, cfg.checkpoint_freq, segment=segment)
         callbacks = [checkpoints, _step_log_callback(out / "steps.csv")]
         if eval_env is not None:
-            by_step: dict[float, list[float]] = {}
-            for r in read_evaluations(out / "eval" / "held_out.csv"):
-                by_step.setdefault(float(r["timesteps"]), []).append(float(r["return"]))
-            best = max((float(np.mean(v)) for v in by_step.values()), default=-np.inf)
+            evals = evaluation_means(out / "eval" / "held_out.csv")
+            best = max((e["return"] for e in evals), default=-np.inf)
             callbacks.insert(
                 0,
                 held_out_eval_callback(

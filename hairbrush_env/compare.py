@@ -64,12 +64,12 @@ def _run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: d
     """One episode of the grid, in this process (also the worker function of the parallel grid)."""
     import gymnasium as gym
 
-    from .hair import HELD_OUT_SEEDS, HELD_OUT_WIGS
+    from .hair import brushing_seeds
     from .policies import make_policy
     from .rollout import run_episode
 
-    if wig in HELD_OUT_WIGS:  # held-out wigs are brushed from the held-out pre-brushed states (RL's test set)
-        env_kwargs = {"wig_seeds": HELD_OUT_SEEDS, **env_kwargs}
+    # held-out wigs are brushed from the held-out pre-brushed states (RL's test set), the others from seeds 0-3
+    env_kwargs = {"wig_seeds": brushing_seeds([wig]), **env_kwargs}
     key = (wig, repr(sorted(env_kwargs.items())))
     if key not in _ENVS:
         _ENVS[key] = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", **env_kwargs)

@@ -434,6 +434,35 @@ HELD_OUT_WIGS: Mapping[str, WigConfig] = {
 HELD_OUT_SEEDS: tuple[int, ...] = (100, 101, 102)
 """Shake seeds of the held-out evaluation (pre-brushed states no training env draws)."""
 
+WIG_SETS: Mapping[str, tuple[str, ...]] = {
+    "all": tuple(PRESETS),
+    "train": TRAIN_WIGS,
+    "held_out": tuple(HELD_OUT_WIGS),
+}
+"""Named sets of wigs accepted wherever a comma-separated list of wig names is."""
+
+
+def wig_names(text: str, *, sets: Sequence[str] = tuple(WIG_SETS), held_out: bool = True) -> list[str]:
+    """Wig names of ``text``: a set name from ``sets`` (``all`` presets, ``train``, ``held_out``) or comma-separated
+    preset (and, with ``held_out``, held-out) names. ``ValueError`` lists the valid names."""
+    if text in sets:
+        return list(WIG_SETS[text])
+    names = [w.strip() for w in text.split(",") if w.strip()]
+    valid = [*PRESETS, *HELD_OUT_WIGS] if held_out else list(PRESETS)
+    bad = [w for w in names if w not in valid]
+    if not names or bad:
+        extra = "".join(f", or {s!r}" for s in sets)
+        raise ValueError(f"unknown wig {', '.join(bad) or repr(text)}; valid: {', '.join(valid)}{extra}")
+    return names
+
+
+def brushing_seeds(wigs: Sequence[str | WigConfig]) -> tuple[int, ...]:
+    """Pre-brushed states (shake seeds) a set of wigs is brushed from: the held-out seeds when every wig is a
+    held-out one (RL's test set, never seen in training), the training seeds otherwise."""
+    names = [w for w in wigs if isinstance(w, str)]
+    return HELD_OUT_SEEDS if names and all(w in HELD_OUT_WIGS for w in names) else TRAIN_WIG_SEEDS
+
+
 WAVE1_COHESION = 50.0
 """``κ`` of the first release's wigs (calibrated on its paddle brush, whose strokes pushed whole groups aside)."""
 

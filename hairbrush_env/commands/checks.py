@@ -101,21 +101,13 @@ def wig_names(*, allow_all: bool = True, allow_held_out: bool = True) -> Callabl
     wigs. Unknown names are refused listing the valid ones."""
 
     def parse(text: str) -> list[str]:
-        from ..hair import HELD_OUT_WIGS, PRESETS
+        from ..hair import wig_names as resolve
 
-        if allow_all and text == "all":
-            return list(PRESETS)
-        if allow_held_out and text == "held_out":
-            return list(HELD_OUT_WIGS)
-        names = [w.strip() for w in text.split(",") if w.strip()]
-        valid = [*PRESETS, *HELD_OUT_WIGS] if allow_held_out else list(PRESETS)
-        bad = [w for w in names if w not in valid]
-        if not names or bad:
-            extra = ", or 'all'" if allow_all else ""
-            raise argparse.ArgumentTypeError(
-                f"unknown wig {', '.join(bad) or repr(text)}; valid: {', '.join(valid)}{extra}"
-            )
-        return names
+        sets = [s for s, ok in (("all", allow_all), ("held_out", allow_held_out)) if ok]
+        try:
+            return resolve(text, sets=sets, held_out=allow_held_out)
+        except ValueError as exc:
+            raise argparse.ArgumentTypeError(str(exc)) from None
 
     return parse
 
