@@ -6,7 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
-from ..studies.rod_pile_summary import pile_summary
+from ..studies.rod_pile import pile_summary
 from .checks import (
     UsageError,
     count,

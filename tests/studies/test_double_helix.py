@@ -15,9 +15,6 @@ from hairbrush_env.studies.double_helix import (
     KINK_ANGLE,
     CombingResult,
     CombingSetup,
-    _bulge,
-    _passages,
-    _strand_points,
     braid_bend,
     breakthroughs,
     combing_cost,
@@ -26,6 +23,8 @@ from hairbrush_env.studies.double_helix import (
     replace_setup,
     run_combing,
 )
+from hairbrush_env.studies.double_helix.model import bulge, strand_points
+from hairbrush_env.studies.double_helix.run import passages
 from hairbrush_env.topology import linking_number
 
 REDUCED = dict(height=0.06, edges_per_pitch=8, samples=60, settle_time=0.2)
@@ -72,7 +71,7 @@ def test_insertion_near_the_clamp_traps_about_half_a_link():
 
 def test_initial_geometry_and_link():
     s = CombingSetup()
-    a, b = _strand_points(s)
+    a, b = strand_points(s)
     assert a[0, 2] == 0.0 and a[-1, 2] == pytest.approx(-s.height)
     np.testing.assert_allclose(np.linalg.norm(a - b, axis=1), 2 * s.helix_radius, rtol=1e-12)
     # one link per pitch: Lk0 ≈ h/P (open-curve ends lose a fraction of a turn)
@@ -82,7 +81,7 @@ def test_initial_geometry_and_link():
     assert abs(a[k, 1]) < 0.5 * s.helix_radius and a[k, 0] > 0
     # the insertion bump leaves the tine (radius t) clear of both strands everywhere
     for p in (a, b):
-        q = p + _bulge(p, s)
+        q = p + bulge(p, s)
         dist = np.hypot(q[:, 0], q[:, 2] + s.insertion_depth)
         assert dist.min() >= s.tine_radius + s.radius
 
@@ -142,14 +141,14 @@ def test_passage_of_one_strand_through_another_is_counted_once():
 
     def count(path) -> int:
         lks = [linking_number(a, b, closed=False) for a in path]
-        return int(sum(_passages(p, n) for p, n in pairwise(lks)))
+        return int(sum(passages(p, n) for p, n in pairwise(lks)))
 
     through = [a_at(z) for z in np.linspace(4e-4, -4e-4, 8)]  # ~0.1 mm per check, through b at z = 0
     assert count(through) == 1
     # the same z sweep but 3 cm to the side: a passes beside b's end, no crossing
     beside = [a_at(z, x0=0.0) + np.array([0.0, 0.03, 0.0]) for z in np.linspace(4e-4, -4e-4, 8)]
     assert count(beside) == 0
-    assert _passages(np.array([0.1, -0.4, 2.0]), np.array([-0.95, -0.1, -0.1])).tolist() == [1, 0, 2]
+    assert passages(np.array([0.1, -0.4, 2.0]), np.array([-0.95, -0.1, -0.1])).tolist() == [1, 0, 2]
 
 
 def _fold_below(points: np.ndarray, z_pivot: float, angle_deg: float) -> np.ndarray:
@@ -167,7 +166,7 @@ def test_braid_bend_measures_the_fold_of_the_braid_below_the_tine():
     """The kink measure on exact geometry: a straight hanging double helix bends 0°, a braid folded by 40° / 70°
     below the tine bends 40° / 70°; splayed free ends (last pitch) and folds with < 3 pitches below do not count."""
     s = CombingSetup(P_over_r=24)
-    a, b = _strand_points(s)
+    a, b = strand_points(s)
     ppp = s.edges_per_pitch
     z_tine = -0.04
     straight = np.stack([a, b])[None]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from hairbrush_env.studies.rod_pile import packing_fraction, philipse_contact_number, random_rod_gas
-from hairbrush_env.studies.rod_pile_summary import pile_summary
+from hairbrush_env.studies.rod_pile.summary import pile_summary
 
 
 def test_summary_of_an_isotropic_gas():

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+__all__ = ["pile_summary"]
+
 
 def pile_summary(p) -> dict:
     """Structure of a packing ``p`` in numbers: φ_f and φ_f α (whole pile, away from the wall layer, per height slab,
@@ -12,7 +14,8 @@ def pile_summary(p) -> dict:
 
     import numpy as np
 
-    from .rod_pile import (
+    from .packing import pile_height
+    from .structure import (
         bulk_rods,
         contact_numbers,
         mean_abs_sin,
@@ -20,7 +23,6 @@ def pile_summary(p) -> dict:
         packing_fraction,
         phi_seen,
         philipse_contact_number,
-        pile_height,
         radial_packing_fraction,
     )
 
