@@ -1,12 +1,7 @@
 """The brushing scene (thesis §3.4, Fig. 3.5): arm + sensorized brush + head mount + wig + fixed webcam.
 
-* :func:`build_scene` composes the MJCF parts (``assets/arm``, ``assets/brush``, ``assets/head``) and a wig
-  (:mod:`hairbrush_env.hair`) into one :class:`mujoco.MjSpec`.
-* The head stands on a **variable-height mount** (thesis: "the head is mounted on a variable height mount such that
-  the bottom of the hair is kept in a fixed location relative to the robot and camera"): it is shifted vertically
-  so that the rest shape's free ends sit at ``SceneConfig.free_end_z`` whatever the wig's hanging length.
-* The ``webcam`` is fixed in the world, looking at the hair from the side (−y) against a light backdrop, so the
-  same framing holds for every wig (thesis: the webcam is fixed relative to the free ends).
+* :mod:`hairbrush_env.scene_build` assembles it (:class:`SceneConfig`, :func:`build_scene`, :func:`wave1_scene`,
+  re-exported here): arm, brush, head on its variable-height mount, wig and webcam in one :class:`mujoco.MjSpec`.
 * :class:`BrushingSim` compiles the scene **once**, owns model/data, the Cartesian controller and the 10 Hz load
   cell, restores cached pre-brushed states on :meth:`BrushingSim.reset` and runs thesis Algorithm 1's inner loop
   (:meth:`BrushingSim.stroke`) or 10 Hz velocity control (:meth:`BrushingSim.step_velocity`).
@@ -27,21 +22,30 @@ from __future__ import annotations
 import dataclasses
 import math
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
 from . import hair as hairmod
 from .arm_control import CartesianController, plan_stroke
-from .assets import load_part
-from .brush import TINE_PREFIX, BrushConfig, brush_spec, get_brush
 from .constants import PAIN_THRESHOLD_N
-from .rods import configure_rod_options
-from .sensors import LoadCell, LoadCellConfig
+from .scene_build import (
+    BRUSH_TCP,
+    HEAD_POS,
+    SCENE_TINE_PREFIX,
+    TOOL_CONTACT_MARGIN,
+    WORKSPACE_Z,
+    SceneConfig,
+    assemble_scene,
+    build_scene,
+    wave1_scene,
+)
+from .sensors import LoadCell
 
 __all__ = [
     "BRUSH_TCP",
+    "HEAD_POS",
     "PAIN_THRESHOLD",
     "TOOL_CONTACT_MARGIN",
     "BrushingSim",
@@ -55,13 +59,7 @@ __all__ = [
 PAIN_THRESHOLD = PAIN_THRESHOLD_N
 """``F_T`` [N] (thesis §3.5: pain threshold ≈ 10 N; :data:`hairbrush_env.constants.PAIN_THRESHOLD_N`)."""
 
-BRUSH_TCP = "arm/brush/brush_tcp"
-HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
 _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
-_WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
-# The arm holds the brush level below its brushing workspace too (IK residual < 0.01 mm down to 0.35 m), so a pull may
-# go on below 0.55 m (SceneConfig.pull_floor_z).
-_PULL_FLOOR_MIN = 0.35
 _RETRACT_GAP = 0.015  # tine tips this far in front of the hair before the brush moves beside it
 _QUIET_SECONDS = 0.3  # end of the pre-brushed settle at the contact step (BrushingSim.settled_state)
 _STEADY_SECONDS, _STEADY_DAMPING = 1.0, 30.0  # hand-steadied rest after the shake (BrushingSim.settled_state)
@@ -71,251 +69,8 @@ _STEADY_SECONDS, _STEADY_DAMPING = 1.0, 30.0  # hand-steadied rest after the sha
 # no strand point moving more than half a wisp radius per control period (4 cm/s).
 _FREE_CLEARANCE = 0.003
 _QUIET_MOTION = 4e-4
-_TINE_PREFIX = "arm/brush/" + TINE_PREFIX
-TOOL_CONTACT_MARGIN = 1e-3
-"""Contact margin [m] of the bristles and head plate. MuJoCo 4.0.1 adds it to the wisp's own margin
-(``hair.CONTACT_MARGIN``), so a hair–tool contact acts from 1.5 mm surface gap: a wisp wrapped round a bristle near the
-clamp carries ~10 N on one contact and sank ~2 mm into it without a margin (1 ms step, flex wig, issue #3)."""
 
 
-@dataclass(frozen=True)
-class SceneConfig:
-    """Scene and simulation settings.
-
-    Parameters
-    ----------
-    wig : str or WigConfig
-        Preset name (see :data:`hairbrush_env.hair.PRESETS`) or custom wig.
-    brush : str or BrushConfig
-        Tines of the brush (:data:`hairbrush_env.brush.BRUSH_PRESETS` or a custom :class:`BrushConfig`).
-    timestep : float
-        Physics step [s] outside the hair (shake, settling, free-space moves). 10 ms: the ``discrete`` integrator is
-        implicit and rods are step-independent in statics. Contact with the brush uses ``contact_timestep``.
-    contact_timestep : float
-        Physics step [s] while the brush is within contact reach of the hair or any strand still moves
-        (``BrushingSim._needs_fine_step``: insertion, pull, retraction through the hair, velocity control). Above
-        1 ms strands cross each other during a stroke (strand speeds reach ~2 m/s; ``docs/rods.md``). Shake,
-        settling and free-space moves keep ``timestep`` (the cached pre-brushed states do not depend on this
-        setting), so ``model.opt.timestep`` changes at run time.
-    control_dt : float
-        Period of the Cartesian tracking loop [s] (IK + servo set-points).
-    width, height : int
-        Webcam resolution [px].
-    camera_distance : float
-        Distance of the webcam from the hair plane [m].
-    free_end_z : float
-        World height of the rest shape's free ends (the head mount height follows from it).
-    brush_depth : float
-        TCP x offset from the wig centre during a stroke [m] (0: bristles span the middle 25 mm of the curtain).
-    stroke_speed : float
-        Default pulling speed [m/s].
-    approach_speed : float
-        Speed of insertion into and withdrawal through the hair [m/s].
-    free_speed : float
-        Speed of moves beside or below the hair (up the retract plane to the start height, out from under the
-        hair after a stroke that went through) [m/s]: the hair still swings, so these run at the contact step and
-        their length is CPU time (half of a comb stroke's at 0.15 m/s).
-    load_cell : LoadCellConfig
-        Instrument (sensor names of the nested brush).
-    hair_hair : bool
-        Hair–hair contact (off only for benchmarks).
-    max_speed : float
-        Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
-    pull_floor_z : float or None
-        A float [m] (≥ 0.35, where the arm still holds the brush level): the pull goes on until the brush is below
-        every strand, however far it dragged the curls, down to this height. Default 0.55, 7 cm below the rest free
-        ends (``free_end_z``): a jammed brush straightens the curls and drags them below their rest ends, and a pull
-        that stops at them leaves the curls on the brush, which then withdraws sideways through them. Pulling on
-        further (0.40) removed no more link, but the strands, taut between the roots and a tine, were squeezed to
-        0.19–0.45 of the sum of radii. ``None``: a pull ends 1 cm below the rest free ends, or earlier once the whole
-        brush is below every strand (the wave-1 stroke, kept for benchmarks; ``docs/detangling.md``).
-    scalp_clearance : float
-        Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 5 mm (default):
-        with the comb's plate the tines enter 8 mm below the roots; link above the highest tine is never combed
-        (starting 12 mm below the roots left twice the link after a stroke). The soft paddle brush needs ~9 mm:
-        closer starts bent the stiff wisps sharply around its bristles at the clamp.
-    """
-
-    wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
-    brush: str | BrushConfig = "comb"
-    timestep: float = 0.01
-    contact_timestep: float = 0.001
-    control_dt: float = 0.01
-    width: int = 320
-    height: int = 240
-    camera_distance: float = 0.42
-    free_end_z: float = 0.62
-    brush_depth: float = 0.0
-    stroke_speed: float = 0.1
-    approach_speed: float = 0.15
-    free_speed: float = 0.4
-    load_cell: LoadCellConfig = field(
-        default_factory=lambda: LoadCellConfig(
-            force_sensor="arm/brush/brush_force", torque_sensor="arm/brush/brush_torque"
-        )
-    )
-    hair_hair: bool = True
-    max_speed: float = 50.0
-    scalp_clearance: float = 0.005
-    pull_floor_z: float | None = 0.55
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
-        object.__setattr__(self, "brush", get_brush(self.brush))
-        for name in (
-            "timestep",
-            "contact_timestep",
-            "control_dt",
-            "camera_distance",
-            "stroke_speed",
-            "approach_speed",
-            "free_speed",
-            "max_speed",
-            "scalp_clearance",
-        ):
-            v = getattr(self, name)
-            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-                raise ValueError(f"SceneConfig.{name} must be a finite number > 0, got {v!r}")
-        if self.control_dt < self.timestep:
-            raise ValueError(f"SceneConfig.control_dt must be >= timestep, got {self.control_dt!r}")
-        if self.contact_timestep > self.timestep:
-            raise ValueError(
-                f"SceneConfig.contact_timestep must be <= timestep, got {self.contact_timestep!r}"
-            )
-        for name in ("width", "height"):
-            v = getattr(self, name)
-            if not (isinstance(v, int) and 16 <= v <= 4096):
-                raise ValueError(f"SceneConfig.{name} must be an int in [16, 4096], got {v!r}")
-        if not (math.isfinite(self.free_end_z) and _WORKSPACE_Z[0] < self.free_end_z < _WORKSPACE_Z[1]):
-            raise ValueError(f"SceneConfig.free_end_z must be inside {_WORKSPACE_Z}, got {self.free_end_z!r}")
-        if self.pull_floor_z is not None and not (
-            isinstance(self.pull_floor_z, (int, float))
-            and math.isfinite(self.pull_floor_z)
-            and _PULL_FLOOR_MIN <= self.pull_floor_z < self.free_end_z
-        ):
-            raise ValueError(
-                f"SceneConfig.pull_floor_z must be in [{_PULL_FLOOR_MIN}, free_end_z), got {self.pull_floor_z!r}"
-            )
-        if not (math.isfinite(self.brush_depth) and abs(self.brush_depth) <= 0.03):
-            raise ValueError(f"SceneConfig.brush_depth must be within ±0.03 m, got {self.brush_depth!r}")
-
-    @property
-    def wig_config(self) -> hairmod.WigConfig:
-        assert isinstance(self.wig, hairmod.WigConfig)
-        return self.wig
-
-    @property
-    def brush_config(self) -> BrushConfig:
-        assert isinstance(self.brush, BrushConfig)
-        return self.brush
-
-
-def wave1_scene(wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG, **changes) -> SceneConfig:
-    """The first release's scene for a wig, kept as a benchmark case: :func:`hairbrush_env.hair.wave1_wig`, the soft
-    ``paddle`` brush with a 9 mm scalp clearance and the short pull (``pull_floor_z = None``)."""
-    return SceneConfig(
-        wig=hairmod.wave1_wig(wig), brush="paddle", scalp_clearance=0.009, pull_floor_z=None, **changes
-    )
-
-
-@dataclass(frozen=True)
-class _SceneInfo:
-    layout: hairmod.WigLayout
-    root_origin: np.ndarray  # world position of the root-plane centre (scalp site)
-    head_offset: float
-
-
-def _head_offset(wig: hairmod.WigConfig, free_end_z: float, scalp_site_z: float) -> float:
-    # Variable-height mount: rest free ends at free_end_z, but never lift the scalp above its design height
-    # (the arm's top reach) — long wigs then simply hang lower.
-    return min(0.0, free_end_z + wig.hanging_length - scalp_site_z)
-
-
-def _build(config: SceneConfig) -> tuple[mujoco.MjSpec, _SceneInfo]:
-    wig = config.wig_config
-    spec = mujoco.MjSpec()
-    spec.modelname = f"hairbrush_{wig.name}"
-    configure_rod_options(spec, timestep=config.timestep, kind=wig.rod_kind)
-    # Elliptic cones: the rods docstring's contact settings were validated with them (pyramidal cones make thin
-    # rods stick-slip on the bristles).
-    spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
-    # refsafe would replace the 1 ms hair contacts by ~2·dt ones, which let bristles pull wisps through themselves
-    # (hair.CONTACT_SOLREF); the discrete integrator treats the stiff rows implicitly, so they stay stable.
-    spec.option.disableflags |= mujoco.mjtDisableBit.mjDSBL_REFSAFE
-    # Speculative contacts widen each geom pair's contact range by how far the pair closes within the step. Strand
-    # tips whip at up to ~2 m/s when the brush lets go of them; without it, a tip closing faster than the 1 mm
-    # hair–hair contact margin per step reached a neighbour before its contact existed and sank into it to 0.12 of
-    # the sum of radii (curly, full stroke; docs/rods.md). Body-chain hair only: MuJoCo does not apply it to flexes.
-    spec.option.enableflags |= mujoco.mjtEnableBit.mjENBL_SPECULATIVE
-    spec.visual.global_.offwidth = max(640, config.width)
-    spec.visual.global_.offheight = max(480, config.height)
-    spec.visual.headlight.ambient = [0.35, 0.35, 0.35]
-    spec.visual.headlight.diffuse = [0.5, 0.5, 0.5]
-
-    arm = load_part("arm")
-    arm.attach(brush_spec(config.brush_config), site="attachment_site", prefix="brush/")
-    arm.compile()  # required before nesting (assets/brush/README.md: pending keyframes)
-    spec.attach(arm, frame=spec.worldbody.add_frame(), prefix="arm/")
-    # Tool geoms get the thin-rod contact parameters of the hair (rods.py: with MuJoCo's default 1 mm impedance
-    # width and 20 ms time constant a strand sinks into — and is pulled through — a 1.5 mm bristle). Contact
-    # parameters of a geom–flex pair are mixed, so both sides must be stiff.
-    for geom in spec.geoms:
-        if geom.name.startswith(_TINE_PREFIX) or geom.name == "arm/brush/head_plate":
-            geom.solref = list(hairmod.CONTACT_SOLREF)
-            geom.solimp = list(hairmod.CONTACT_SOLIMP)
-            geom.margin = TOOL_CONTACT_MARGIN
-
-    head = load_part("head")
-    scalp_local = np.asarray(head.body("scalp").pos) + np.asarray(head.site("scalp").pos)
-    dz = _head_offset(wig, config.free_end_z, float(HEAD_POS[2] + scalp_local[2]))
-    mount = HEAD_POS + np.array([0.0, 0.0, dz])
-    spec.attach(head, frame=spec.worldbody.add_frame(pos=[float(v) for v in mount]), prefix="head/")
-    root_origin = mount + scalp_local
-
-    layout = hairmod.add_wig(
-        spec,
-        wig,
-        parent_body="head/scalp",
-        root_offset=np.array(spec.site("head/scalp").pos),
-        hair_hair=config.hair_hair,
-    )
-
-    # Webcam: fixed, level, looking along +y at the hair plane x = root_origin.x, framing the workspace heights.
-    # A light, untextured backdrop behind the hair gives the curls contrast for the vision pipeline.
-    look = np.array([root_origin[0], 0.0, 0.74])
-    cam = spec.worldbody.add_camera(name="webcam", pos=list(look - [0.0, config.camera_distance, 0.0]))
-    cam.quat = [math.sqrt(0.5), math.sqrt(0.5), 0.0, 0.0]  # camera -z along world +y, camera y = world z
-    cam.fovy = 50.0
-    backdrop = spec.worldbody.add_body(name="backdrop", pos=[float(root_origin[0]), 0.3, 0.75])
-    backdrop.add_geom(
-        type=mujoco.mjtGeom.mjGEOM_BOX,
-        size=[0.5, 0.005, 0.5],
-        rgba=[0.92, 0.92, 0.9, 1.0],
-        contype=0,
-        conaffinity=0,
-        group=2,
-    )
-    key_light = spec.worldbody.add_light(name="key", pos=[float(root_origin[0]) - 0.5, -0.6, 1.6])
-    key_light.dir = [0.5, 0.6, -1.0]
-    key_light.diffuse = [0.6, 0.6, 0.6]
-    key_light.castshadow = False
-    fill = spec.worldbody.add_light(name="fill", pos=[float(root_origin[0]) + 0.3, -0.8, 0.9])
-    fill.dir = [-0.2, 1.0, -0.1]
-    fill.diffuse = [0.35, 0.35, 0.35]
-    fill.castshadow = False
-    return spec, _SceneInfo(layout=layout, root_origin=root_origin, head_offset=dz)
-
-
-def build_scene(config: SceneConfig | None = None) -> mujoco.MjSpec:
-    """Compose arm + brush + head mount + wig + webcam + lights into one (uncompiled) spec.
-
-    Names: arm ``arm/...``, brush ``arm/brush/...`` (TCP site :data:`BRUSH_TCP`), head ``head/...``, strands
-    ``hair0 ... hair{n-1}`` (rods), camera ``webcam``.
-    """
-    return _build(config if config is not None else SceneConfig())[0]
-
-
-# ---------------------------------------------------------------------------------------------- runtime
 @dataclass(frozen=True)
 class StrokeResult:
     """Outcome of one brush stroke.
@@ -391,7 +146,7 @@ class BrushingSim:
     ) -> None:
         self.config = config if config is not None else SceneConfig()
         self.wig = self.config.wig_config
-        self.spec, info = _build(self.config)
+        self.spec, info = assemble_scene(self.config)
         self.layout = info.layout
         self.root_origin = info.root_origin
         self.head_offset = info.head_offset
@@ -428,7 +183,7 @@ class BrushingSim:
         self._step_observers: list = []
         self.n_steps = 0  # physics steps taken by strokes and velocity control (for benchmarks)
         self._bristle_geoms = np.array(
-            [g for g in range(self.model.ngeom) if self.model.geom(g).name.startswith(_TINE_PREFIX)],
+            [g for g in range(self.model.ngeom) if self.model.geom(g).name.startswith(SCENE_TINE_PREFIX)],
             dtype=int,
         )
         self.diverged = False
@@ -508,7 +263,7 @@ class BrushingSim:
         floor = self.config.pull_floor_z
         if floor is not None:
             return float(floor)
-        return max(self.hair_bottom - self.brush.half_height - 0.01, _WORKSPACE_Z[0])
+        return max(self.hair_bottom - self.brush.half_height - 0.01, WORKSPACE_Z[0])
 
     def brush_below_hair(self) -> bool:
         """Whether the whole brush (with the contact reach) is below every strand: a pull has gone through."""
@@ -728,7 +483,7 @@ class BrushingSim:
             self.load_cell.rng = rng
         t0 = float(self.data.time)
         z_start = self.start_height(start_fraction)
-        z_start = float(np.clip(z_start, _WORKSPACE_Z[0], _WORKSPACE_Z[1]))
+        z_start = float(np.clip(z_start, WORKSPACE_Z[0], WORKSPACE_Z[1]))
         # The pull ends once the whole brush is below every strand. With a pull floor it goes on until then, wherever
         # the brush has dragged the free ends (curls straighten under a jammed brush and hang far lower than at
         # rest), down to that floor; without one it ends 1 cm below the rest free ends at the latest.
@@ -803,8 +558,8 @@ class BrushingSim:
         samples: list = []
         n = max(1, round(dt / self.config.control_dt))
         vel = np.array([v_depth, 0.0, v_z])
-        lo = np.array([self.retract_x, -0.05, _WORKSPACE_Z[0]])
-        hi = np.array([self.root_origin[0] + 0.02, 0.05, min(self.top_z, _WORKSPACE_Z[1])])
+        lo = np.array([self.retract_x, -0.05, WORKSPACE_Z[0]])
+        hi = np.array([self.root_origin[0] + 0.02, 0.05, min(self.top_z, WORKSPACE_Z[1])])
         for _ in range(n):
             target = np.clip(self._target + vel * self.config.control_dt, lo, hi)
             # feed forward the velocity the target really has: at a workspace limit it is zero, and feeding the

@@ -92,7 +92,7 @@ def test_layout_ground_truth_links(name: str) -> None:
     # entwined pairs link as many times as they share turns (open curves lose < 1 turn at the ends)
     lk = np.abs(lay.pair_link)
     # chords are shorter than the arcs they cut: at 4–5 edges per turn the polygon of the configured length has up
-    # to ~13 % more turns than the smooth helix (hair._polygon_turns); the links follow the polygon
+    # to ~13 % more turns than the smooth helix (hair.layout._polygon_turns); the links follow the polygon
     assert lay.turns == pytest.approx(wig.turns, rel=0.15) and lay.turns >= wig.turns
     assert np.all(lk <= lay.turns + 1e-9) and np.all(lk >= lay.turns - 1.0)
     assert np.all(np.sign(lay.pair_link[lk > 0.5]) == -wig.handedness)  # one chirality for all (homochiral)

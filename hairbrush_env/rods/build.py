@@ -40,7 +40,7 @@ def configure_rod_options(
     * ``"chain"``: ``solver = PGS`` capped at :data:`~hairbrush_env.rods.chain.CHAIN_SOLVER_ITERATIONS`; Newton's
       contact Jacobians span whole chains and cost ~8× more per step in a stroke (``docs/rods.md``).
     * ``"flex"``: ``solver = Newton`` (PGS does not support flex; 0–1 iterations per step on rods).
-    * ``refsafe`` is left as is here (the scene disables it for its stiff hair contacts, see ``scene.py``).
+    * ``refsafe`` is left as is here (the scene disables it for its stiff hair contacts, see ``scene_build.py``).
 
     Parameters
     ----------
