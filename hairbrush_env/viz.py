@@ -101,13 +101,14 @@ class EpisodeRecorder:
         t: float,
         strands: Sequence[np.ndarray],
         groups: Sequence[int],
-        brush: np.ndarray,
-        brush_rotation: np.ndarray | None = None,
+        tines: np.ndarray,
+        tine_radius: float,
     ) -> None:
-        """Log the strands (coloured by their entwined group) and the brush pose at sim time ``t``.
+        """Log the strands (coloured by their entwined group) and the brush's tines at sim time ``t``.
 
-        The brush is drawn as its bristle block (25 × 48 × 20 mm) centred on the TCP, rotated by
-        ``brush_rotation`` (3×3 world rotation of the TCP frame) if given.
+        ``tines`` are the bristle axis segments in the world, ``(n, 2, 3)``
+        (:meth:`hairbrush_env.scene.BrushingSim.bristle_segments`), drawn at their own radius, so the recording
+        shows whichever brush the scene was built with.
         """
         rr = self._rr
         self._at(t)
@@ -116,19 +117,9 @@ class EpisodeRecorder:
             "scene/hair",
             rr.LineStrips3D([np.asarray(s, np.float32) for s in strands], colors=colors, radii=0.0008),
         )
-        quat = None
-        if brush_rotation is not None:
-            from scipy.spatial.transform import Rotation
-
-            quat = [rr.Quaternion(xyzw=Rotation.from_matrix(np.asarray(brush_rotation)).as_quat())]
         self._rec.log(
             "scene/brush",
-            rr.Boxes3D(
-                centers=[np.asarray(brush, np.float32)],
-                half_sizes=[(0.0125, 0.024, 0.010)],
-                quaternions=quat,
-                colors=[(40, 40, 40)],
-            ),
+            rr.LineStrips3D(np.asarray(tines, np.float32), colors=[(40, 40, 40)], radii=float(tine_radius)),
         )
 
     def force(self, t: float, value: float) -> None:
@@ -137,7 +128,8 @@ class EpisodeRecorder:
 
     def image(self, t: float, img: np.ndarray) -> None:
         self._at(t)
-        self._rec.log("camera/webcam", self._rr.Image(np.asarray(img)))
+        # JPEG: a raw 320 × 240 frame is 230 kB, as much as ~30 frames of a 24-strand wig
+        self._rec.log("camera/webcam", self._rr.Image(np.asarray(img)).compress(jpeg_quality=85))
 
     def stroke(self, t: float, index: int, max_force: float, entanglement: float) -> None:
         self._at(t)

@@ -42,8 +42,9 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
     def observe(sim_, sample) -> None:
         # called by the simulation at every load-cell sample (10 Hz), with the episode's simulated time
         if recorder is not None:
-            rotation = sim_.data.site_xmat[sim_.controller.site_id].reshape(3, 3)
-            recorder.frame(sample.time, sim_.hair_curves(), groups, sim_.brush_position(), rotation)
+            recorder.frame(
+                sample.time, sim_.hair_curves(), groups, sim_.bristle_segments(), sim_.bristle_radius
+            )
             recorder.force(sample.time, sample.brushing_force())
         if video is not None:
             video.add(sim_.render())
