@@ -59,6 +59,24 @@ def max_safe_length(env, seeds: Sequence[int], *, tol: float = 0.05) -> tuple[fl
     return lo, trials
 
 
+def safe_point(wig: str, seeds: Sequence[int], tol: float, width: int, height: int) -> SafePoint:
+    """One wig of the fit: its vision R_c (mean over ``seeds``) and its largest safe b_l (one cell of
+    ``scripts/fit_sigmoid.py``, run by :mod:`hairbrush_env.executor` in this process, local workers or Ray)."""
+    import gymnasium as gym
+
+    from controllers.vision import curliness
+
+    env = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", width=width, height=height)
+    try:
+        rc = float(
+            np.mean([curliness(env.reset(seed=s)[0]["image"], roi=env.unwrapped.hair_roi()) for s in seeds])
+        )
+        safe, trials = max_safe_length(env, seeds, tol=tol)
+        return SafePoint(wig, env.unwrapped.sim.curliness_true, rc, safe, trials)
+    finally:
+        env.close()
+
+
 def fit_k(rc: Sequence[float], safe: Sequence[float], *, c: float = 0.5) -> tuple[float, float, float]:
     """Smallest k > 0 with 1/(1 + exp(k (R_c − c))) ≤ safe length at every point.
 

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from .constants import PAIN_THRESHOLD_N
+from .executor import CellLog, CellOutcome, CellsFailed, ExecutorConfig, run_cells
 from .io import read_csv_rows, write_csv_rows, write_text
 
 COLUMNS = [
@@ -60,8 +61,8 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
 _ENVS: dict[tuple[str, str], Any] = {}
 
 
-def _run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: dict[str, Any]) -> dict:
-    """One episode of the grid, in this process (also the worker function of the parallel grid)."""
+def run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: dict[str, Any]) -> dict:
+    """One episode of the grid, seeded by its own cell (``seed + episode``): the executor's worker function."""
     import gymnasium as gym
 
     from .hair import brushing_seeds
@@ -79,7 +80,8 @@ def _run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: d
     return log.summary()
 
 
-def _close_envs() -> None:
+def close_envs() -> None:
+    """Close the envs this process built for grid cells."""
     while _ENVS:
         _ENVS.popitem()[1].close()
 
@@ -103,61 +105,61 @@ def run_grid(
     seed: int,
     out: str | Path,
     env_kwargs: dict[str, Any] | None = None,
-    workers: int = 1,
+    executor: ExecutorConfig | None = None,
     progress: bool = True,
 ) -> list[dict[str, Any]]:
-    """Run (or resume) the grid; returns all rows and writes ``out/results.csv``, ``summary.md`` and plots.
+    """Run (or resume) the grid; returns all rows and writes ``out/results.csv``, ``summary.md``, plots and the
+    per-episode timing and errors ``cells.csv``.
 
-    ``workers > 1`` runs episodes in that many processes (one core each; each builds its own envs).
+    ``executor`` runs the episodes (default: this process; :mod:`hairbrush_env.executor`: local worker processes
+    or Ray, each worker building its own envs). A failed episode is reported while the others finish, then raises
+    :class:`~hairbrush_env.executor.CellsFailed` naming it; a rerun retries it.
     """
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-    from multiprocessing import get_context
-
-    from tqdm import tqdm
-
     if episodes < 1:
         raise ValueError(f"episodes: must be >= 1, got {episodes}")
     _check_names(wigs, policies)
-    if int(workers) != workers or workers < 1:
-        raise ValueError(f"workers: must be a positive integer, got {workers!r}")
+    executor = executor if executor is not None else ExecutorConfig()
     out = Path(out)
     csv_path = out / "results.csv"
     rows = read_results(csv_path) if csv_path.exists() else []
     done = {(r["wig"], r["policy"], r["episode"]) for r in rows}
     todo = [(w, p, e) for w in wigs for p in policies for e in range(episodes) if (w, p, e) not in done]
     kwargs = dict(env_kwargs or {})
-    bar = tqdm(total=len(todo), desc="compare", unit="episode", disable=not progress)
+    log = CellLog(out / "cells.csv", executor)
+    cells = [((w, p, e), (w, p, e, seed, kwargs)) for w, p, e in todo]
 
-    def finished(row: dict) -> None:
-        rows.append(row)
-        # after every episode: an interrupt loses at most the episodes still running
-        write_csv_rows(csv_path, rows, COLUMNS)
-        bar.set_postfix(wig=row["wig"], policy=row["policy"], f_max=f"{row['max_force']:.1f}")
-        bar.update(1)
+    def postfix(o: CellOutcome) -> dict[str, Any]:
+        return {"wig": o.value["wig"], "policy": o.value["policy"], "f_max": f"{o.value['max_force']:.1f}"}
 
     try:
-        if workers == 1 or len(todo) <= 1:
-            for wig, policy_name, ep in todo:
-                finished(_run_cell(wig, policy_name, ep, seed, kwargs))
-        else:
-            # forkserver: workers must not inherit this process's MuJoCo/GL state
-            with ProcessPoolExecutor(max_workers=workers, mp_context=get_context("forkserver")) as pool:
-                futures = [pool.submit(_run_cell, w, p, e, seed, kwargs) for w, p, e in todo]
-                try:
-                    for fut in as_completed(futures):
-                        finished(fut.result())
-                except BaseException:
-                    for fut in futures:
-                        fut.cancel()
-                    raise
+        for outcome in run_cells(
+            run_cell,
+            cells,
+            executor=executor,
+            desc="compare",
+            unit="episode",
+            progress=progress,
+            postfix=postfix,
+        ):
+            log.record(outcome)
+            if outcome.ok:
+                rows.append(outcome.value)
+                # after every episode: an interrupt loses at most the episodes still running
+                write_csv_rows(csv_path, _sorted(rows), COLUMNS)
     finally:
-        bar.close()
-        _close_envs()
-    rows.sort(key=lambda r: (r["R_over_P"], r["wig"], r["policy"], r["episode"]))
+        close_envs()
+    rows = _sorted(rows)
     write_csv_rows(csv_path, rows, COLUMNS)
     write_text(out / "summary.md", summary_markdown(rows))
-    plot_grid(rows, out / "max_force_vs_curliness.png", out / "time_vs_curliness.png")
+    if rows:
+        plot_grid(rows, out / "max_force_vs_curliness.png", out / "time_vs_curliness.png")
+    if log.failed:
+        raise CellsFailed("episode(s)", log.failed)
     return rows
+
+
+def _sorted(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    return sorted(rows, key=lambda r: (r["R_over_P"], r["wig"], r["policy"], r["episode"]))
 
 
 def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:

@@ -9,7 +9,7 @@ repetitions: they give different pre-brushed wigs and load-cell noise, and the m
 thesis plots.
 
 Rows are written to ``out/strokes.csv`` after every cell (atomically), so an interrupted run keeps its rows and a
-rerun skips them.
+rerun skips them. Cells run where :mod:`hairbrush_env.executor` puts them (this process, local workers or Ray).
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from typing import Any
 
 import numpy as np
 
+from .executor import CellLog, CellOutcome, CellsFailed, ExecutorConfig, run_cells
 from .io import read_csv_rows, write_csv_rows, write_text
 
 COLUMNS = ["wig", "R_over_P", "brush_length", "speed", "seed", "max_force", "sim_time", "diverged"]
@@ -46,6 +47,38 @@ def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[flo
     return vals
 
 
+#: One simulator per wig and process, built on first use (building a scene takes seconds; strokes reuse it).
+_SIMS: dict[str, Any] = {}
+
+
+def stroke_cell(wig: str, b_l: float, speed: float, seed: int) -> dict[str, Any]:
+    """One cell: the pre-brushed wig of ``seed``, one stroke without abort, load-cell noise seeded by ``seed``
+    (the executor's worker function)."""
+    from .scene import BrushingSim, SceneConfig
+
+    if wig not in _SIMS:
+        _SIMS[wig] = BrushingSim(SceneConfig(wig=wig))
+    sim = _SIMS[wig]
+    sim.reset(seed)
+    res = sim.stroke(b_l, speed=speed, abort_force=None, rng=np.random.default_rng(seed))
+    return {
+        "wig": wig,
+        "R_over_P": sim.curliness_true,
+        "brush_length": b_l,
+        "speed": speed,
+        "seed": seed,
+        "max_force": res.max_force,
+        "sim_time": res.sim_time,
+        "diverged": res.diverged,
+    }
+
+
+def close_sims() -> None:
+    """Close the simulators this process built for stroke cells."""
+    while _SIMS:
+        _SIMS.popitem()[1].close()
+
+
 def measure_strokes(
     wigs: Sequence[str],
     *,
@@ -53,6 +86,7 @@ def measure_strokes(
     speeds: Sequence[float] = (0.1,),
     seeds: Sequence[int] = (0,),
     out: str | Path | None = None,
+    executor: ExecutorConfig | None = None,
     progress: bool = True,
 ) -> list[dict[str, Any]]:
     """Max force of one stroke for every ``(wig, brush_length, speed, seed)``.
@@ -68,19 +102,20 @@ def measure_strokes(
     seeds : sequence of int
         Pre-brushed wig / noise seeds (the repetitions).
     out : path, optional
-        Directory for ``strokes.csv`` (resumed if present), ``summary.md`` and ``force_vs_*.png``.
+        Directory for ``strokes.csv`` (resumed if present), ``summary.md``, ``force_vs_*.png`` and the per-stroke
+        timing and errors ``cells.csv``.
+    executor : ExecutorConfig, optional
+        Where strokes run (default: this process; :mod:`hairbrush_env.executor`).
     progress : bool
         Show a progress bar.
 
     Returns
     -------
     list of dict
-        One row per stroke, columns :data:`COLUMNS`.
+        One row per stroke, columns :data:`COLUMNS`. A failed stroke is reported while the others finish, then
+        raises :class:`~hairbrush_env.executor.CellsFailed` naming it.
     """
-    from tqdm import tqdm
-
     from . import hair
-    from .scene import BrushingSim, SceneConfig
 
     unknown = [w for w in wigs if w not in hair.PRESETS]
     if unknown or not wigs:
@@ -94,49 +129,56 @@ def measure_strokes(
     csv_path = Path(out) / "strokes.csv" if out is not None else None
     rows = read_strokes(csv_path) if csv_path is not None and csv_path.exists() else []
     done = {(r["wig"], r["brush_length"], r["speed"], r["seed"]) for r in rows}
-    todo = [
-        (w, b, v, s)
+    cells = [
+        ((w, b, v, s), (w, b, v, s))
         for w in wigs
         for b in lengths
         for v in speed_list
         for s in seed_list
         if (w, b, v, s) not in done
     ]
-    bar = tqdm(total=len(todo), desc="strokes", unit="stroke", disable=not progress)
-    sims: dict[str, BrushingSim] = {}
+    log = CellLog(Path(out) / "cells.csv", executor) if out is not None else None
+
+    def postfix(o: CellOutcome) -> dict[str, Any]:
+        w, b, v, _ = o.key
+        return {"wig": w, "b_l": b, "v": v, "f_max": f"{o.value['max_force']:.1f}"}
+
+    failed = []
     try:
-        for wig, b_l, speed, seed in todo:
-            if wig not in sims:
-                sims[wig] = BrushingSim(SceneConfig(wig=wig))
-            sim = sims[wig]
-            sim.reset(seed)
-            res = sim.stroke(b_l, speed=speed, abort_force=None, rng=np.random.default_rng(seed))
-            rows.append(
-                {
-                    "wig": wig,
-                    "R_over_P": sim.curliness_true,
-                    "brush_length": b_l,
-                    "speed": speed,
-                    "seed": seed,
-                    "max_force": res.max_force,
-                    "sim_time": res.sim_time,
-                    "diverged": res.diverged,
-                }
-            )
-            if csv_path is not None:
-                write_csv_rows(csv_path, rows, COLUMNS)  # after every stroke: an interrupt loses at most one
-            bar.set_postfix(wig=wig, b_l=b_l, v=speed, f_max=f"{res.max_force:.1f}")
-            bar.update(1)
+        for outcome in run_cells(
+            stroke_cell,
+            cells,
+            executor=executor,
+            desc="strokes",
+            unit="stroke",
+            progress=progress,
+            postfix=postfix,
+        ):
+            if log is not None:
+                log.record(outcome)
+            if not outcome.ok:
+                failed.append(outcome)
+                continue
+            rows.append(outcome.value)
+            if (
+                csv_path is not None
+            ):  # after every stroke: an interrupt loses at most the strokes still running
+                write_csv_rows(csv_path, _sorted(rows), COLUMNS)
     finally:
-        bar.close()
-        for sim in sims.values():
-            sim.close()
-    rows.sort(key=lambda r: (r["R_over_P"], r["wig"], r["brush_length"], r["speed"], r["seed"]))
+        close_sims()
+    rows = _sorted(rows)
     if out is not None:
         write_csv_rows(Path(out) / "strokes.csv", rows, COLUMNS)
         write_text(Path(out) / "summary.md", summary_markdown(rows))
-        plot_strokes(rows, out)
+        if rows:
+            plot_strokes(rows, out)
+    if failed:
+        raise CellsFailed("stroke(s)", failed)
     return rows
+
+
+def _sorted(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    return sorted(rows, key=lambda r: (r["R_over_P"], r["wig"], r["brush_length"], r["speed"], r["seed"]))
 
 
 def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:

@@ -1,6 +1,6 @@
 """Fit the sigmoid steepness k of eq. 3.3 in simulation (thesis Fig. 3.9) — thin wrapper over controllers.sigmoid_fit.
 
-    python scripts/fit_sigmoid.py [--seeds 0,1] [--tol 0.05] [--wigs all] --out runs/sigmoid
+    python scripts/fit_sigmoid.py [--seeds 0,1] [--tol 0.05] [--wigs all] [--workers N | --ray auto] --out runs/sigmoid
 
 Writes OUT/sigmoid_fit.json (k, bounds, per-wig safe lengths) and OUT/sigmoid_fit.png.
 """
@@ -12,38 +12,37 @@ import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-import gymnasium as gym
 import numpy as np
-from tqdm import tqdm
 
 import hairbrush_env  # noqa: F401
 from controllers.sigmoid import THESIS_K
-from controllers.sigmoid_fit import SafePoint, fit_k, max_safe_length, plot_fit
-from controllers.vision import curliness
-from hairbrush_env.commands import add_webcam_args
-from hairbrush_env.hair import PRESETS
+from controllers.sigmoid_fit import fit_k, plot_fit, safe_point
+from hairbrush_env.commands import add_executor_args, add_webcam_args, executor_from_args
+from hairbrush_env.commands.checks import number_list, positive, seed, wig_names
+from hairbrush_env.executor import CellsFailed, run_cells
 from hairbrush_env.io import write_json
 
 
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--wigs", default="all")
-    p.add_argument("--seeds", default="0,1")
-    p.add_argument("--tol", type=float, default=0.05)
+    p.add_argument("--wigs", type=wig_names(), default="all", help="comma-separated wig names, 'all' presets")
+    p.add_argument("--seeds", type=number_list(seed), default="0,1", help="pre-brushed wigs tried per b_l")
+    p.add_argument("--tol", type=positive, default=0.05, help="bisection tolerance on b_l")
     add_webcam_args(p)
+    add_executor_args(p, workers=1, what="wigs")
     p.add_argument("--out", default="runs/sigmoid")
     a = p.parse_args()
-    wigs = list(PRESETS) if a.wigs == "all" else a.wigs.split(",")
-    seeds = [int(s) for s in a.seeds.split(",")]
-    points = []
-    for wig in tqdm(wigs, desc="wigs"):
-        env = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", width=a.width, height=a.height)
-        rc = float(
-            np.mean([curliness(env.reset(seed=s)[0]["image"], roi=env.unwrapped.hair_roi()) for s in seeds])
-        )
-        safe, trials = max_safe_length(env, seeds, tol=a.tol)
-        points.append(SafePoint(wig, env.unwrapped.sim.curliness_true, rc, safe, trials))
-        env.close()
+    wigs, seeds = a.wigs, [int(s) for s in a.seeds]
+    cells = [(wig, (wig, seeds, a.tol, a.width, a.height)) for wig in wigs]
+    found, failed = {}, []
+    for outcome in run_cells(safe_point, cells, executor=executor_from_args(a), desc="wigs", unit="wig"):
+        if outcome.ok:
+            found[outcome.key] = outcome.value
+        else:
+            failed.append(outcome)
+    if failed:
+        raise SystemExit(str(CellsFailed("wig(s)", failed)))
+    points = [found[wig] for wig in wigs]  # in the order asked, whichever worker finished first
     k, lo, hi = fit_k([pt.rc for pt in points], [pt.safe_length for pt in points])
     write_json(
         f"{a.out}/sigmoid_fit.json",

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from hairbrush_env import compare
+from hairbrush_env.executor import ExecutorConfig
 from hairbrush_env.io import write_csv_rows
 
 
@@ -69,7 +70,7 @@ def test_bad_episode_count(tmp_path) -> None:
     with pytest.raises(ValueError, match="episodes"):
         compare.run_grid(["curly"], ["naive"], episodes=0, seed=0, out=tmp_path, progress=False)
     with pytest.raises(ValueError, match="workers"):
-        compare.run_grid(["curly"], ["naive"], episodes=1, seed=0, out=tmp_path, workers=0, progress=False)
+        ExecutorConfig(workers=0)
 
 
 @pytest.mark.slow
@@ -87,7 +88,7 @@ def test_naive_hurts_on_the_curliest_wig_sigmoid_does_not(tmp_path) -> None:
         seed=0,
         out=tmp_path,
         env_kwargs={"max_episode_steps": 4, "width": 640, "height": 480},
-        workers=2,  # also exercises the process-parallel grid
+        executor=ExecutorConfig(workers=2),  # also exercises the process-parallel grid
         progress=False,
     )
     by_policy = {r["policy"]: r for r in rows}
@@ -113,7 +114,7 @@ def test_naive_finishes_faster_than_sigmoid(tmp_path) -> None:
         seed=0,
         out=tmp_path,
         env_kwargs={"width": 640, "height": 480},
-        workers=2,
+        executor=ExecutorConfig(workers=2),
         progress=False,
     )
     by_policy = {r["policy"]: r for r in rows}

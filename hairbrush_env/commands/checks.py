@@ -181,3 +181,17 @@ def input_file(text: str) -> str:
     if not Path(text).is_file():
         raise argparse.ArgumentTypeError(f"no such file: {text!r}")
     return text
+
+
+def ray_address(text: str) -> str:
+    """``--ray``: ``auto`` or a cluster address; the optional ``ray`` extra must be installed."""
+    from ..executor import ray_available
+
+    text = text.strip()
+    if not text:
+        raise argparse.ArgumentTypeError("expected 'auto' or a Ray cluster address, got ''")
+    if not ray_available():
+        raise argparse.ArgumentTypeError(
+            f"{text!r} needs Ray, which is not installed: pip install 'hairbrush-env[ray]'"
+        )
+    return text

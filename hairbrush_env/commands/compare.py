@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from . import add_webcam_args
+from . import add_executor_args, add_webcam_args, executor_from_args
 from .checks import (
     count,
     number,
@@ -30,7 +30,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             seed=args.seed,
             out=args.out,
             env_kwargs={"width": args.width, "height": args.height},
-            workers=args.workers,
+            executor=executor_from_args(args),
             progress=not args.quiet,
         )
     except ValueError as exc:
@@ -64,7 +64,7 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
         default="runs/compare",
         help="output directory (resumes an interrupted grid)",
     )
-    p.add_argument("--workers", type=count, default=1, help="episodes run in this many processes")
+    add_executor_args(p, workers=1, what="episodes")
     add_webcam_args(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_compare)
@@ -80,6 +80,7 @@ def _cmd_strokes(args: argparse.Namespace) -> int:
             speeds=args.speeds,
             seeds=range(args.seed, args.seed + args.seeds),
             out=args.out,
+            executor=executor_from_args(args),
             progress=not args.quiet,
         )
     except ValueError as exc:
@@ -111,6 +112,7 @@ def _add_strokes(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--out", type=output_dir, default="runs/strokes", help="output directory (resumes an interrupted run)"
     )
+    add_executor_args(p, workers=1, what="strokes")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_strokes)
 

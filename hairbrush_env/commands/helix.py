@@ -6,6 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
+from . import add_executor_args, executor_from_args
 from .checks import UsageError, count, integer, output_dir, positive, seed
 
 
@@ -86,7 +87,7 @@ def _cmd_helix_sweep(args: argparse.Namespace) -> int:
         raise UsageError("--vary", str(exc)) from None
     points = [{"setup": s.key(), "seed": seed} for s in setups for seed in range(args.seeds)]
     out = Path(args.out)
-    raw = run_sweep(run_point, points, out / "cache", workers=args.workers, desc=f"sweep {name}")
+    raw = run_sweep(run_point, points, out / "cache", executor=executor_from_args(args), desc=f"sweep {name}")
     results = [CombingResult.from_dict(r) for r in raw]
     vkey = (lambda r: r.setup.q_effective) if name == "q" else (lambda r: float(getattr(r.setup, name)))
     rows = []
@@ -165,7 +166,7 @@ def _add_helix(sub: argparse._SubParsersAction) -> None:
     )
     sweep.add_argument("--vary", required=True, metavar="NAME=v1,v2,...", help="e.g. P_over_r=18,24,36,48")
     sweep.add_argument("--seeds", type=count, default=1, help="seeds per value")
-    sweep.add_argument("--workers", type=count, default=2, help="worker processes")
+    add_executor_args(sweep, workers=2, what="sweep points")
     sweep.set_defaults(func=_cmd_helix_sweep)
 
 
@@ -177,7 +178,9 @@ def _cmd_census(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise UsageError("--hairs/--edges/--settle", str(exc)) from None
     out = Path(args.out)
-    stats = run_census_sweep(setup, seeds=range(args.seeds), cache_dir=out / "cache", workers=args.workers)
+    stats = run_census_sweep(
+        setup, seeds=range(args.seeds), cache_dir=out / "cache", executor=executor_from_args(args)
+    )
     paths = write_census(stats, out)
     plot_census(stats, out / "census.png")
     for crit, table in stats["criteria"].items():
@@ -205,7 +208,7 @@ def _add_census(sub: argparse._SubParsersAction) -> None:
         "--edges", type=integer(4), default=100, help="edges per hair (100: δl = 2 mm as in Fig. 2.10)"
     )
     p.add_argument("--settle", type=positive, default=1.5, help="simulated seconds of jostling + relaxation")
-    p.add_argument("--workers", type=count, default=2, help="worker processes")
+    add_executor_args(p, workers=2, what="seeds")
     p.add_argument("--out", type=output_dir, default="runs/census", help="output directory")
     p.set_defaults(func=_cmd_census)
 

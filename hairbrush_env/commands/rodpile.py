@@ -7,6 +7,7 @@ import math
 from pathlib import Path
 
 from ..studies.rod_pile import pile_summary
+from . import add_executor_args, executor_from_args
 from .checks import (
     UsageError,
     count,
@@ -105,27 +106,51 @@ def _cmd_rodpile_summary(args: argparse.Namespace) -> int:
 
 
 def _cmd_rodpile_sweep(args: argparse.Namespace) -> int:
+    from ..executor import CellLog, CellsFailed, run_cells
     from ..io import write_json
-    from ..studies.rod_pile import generate_packing, load_packing, plot_phi_alpha
+    from ..studies.rod_pile import load_packing, plot_phi_alpha, sweep_pile
 
+    if len(args.alphas) != len(args.n_rods):
+        raise UsageError(
+            "--n-rods", f"give one rod count per α: {len(args.alphas)} α, {len(args.n_rods)} counts"
+        )
     out = Path(args.out)
-    rows = []
-    for alpha, n in zip(args.alphas, args.n_rods, strict=True):
-        path = out / f"pile_alpha{alpha:g}_n{n}_seed{args.seed}.npz"
-        if path.exists():  # resume: piles already generated are reused
-            p = load_packing(path)
-        else:
-            p = generate_packing(n, args.length, args.length / alpha, container_diameter=args.container * args.length,
-                                 seed=args.seed, friction=args.friction, batch_size=args.batch,
-                                 freeze_depth=args.freeze_depth, progress=not args.quiet)  # fmt: skip
-            p.save(path)
-        s = pile_summary(p)
-        _print_summary(f"α={alpha:g}", s)
-        rows.append(s)
-        write_json(out / "sweep.json", rows)
-    plot_phi_alpha([r["alpha"] for r in rows], [r["phi_f"] for r in rows], out / "phi_alpha.png",
-                   contacts=[r["mean_contacts_bulk"] for r in rows])  # fmt: skip
-    print(f"wrote {out / 'sweep.json'}, {out / 'phi_alpha.png'}")
+    out.mkdir(parents=True, exist_ok=True)
+    generate = {"length": args.length, "container_diameter": args.container * args.length, "seed": args.seed,
+                "friction": args.friction, "batch_size": args.batch, "freeze_depth": args.freeze_depth}  # fmt: skip
+    keys = list(zip(args.alphas, args.n_rods, strict=True))
+    path = {(a, n): out / f"pile_alpha{a:g}_n{n}_seed{args.seed}.npz" for a, n in keys}
+    summaries: dict = {}
+
+    def finished(key, summary: dict) -> None:
+        _print_summary(f"α={key[0]:g}", summary)
+        s = dict(summary)
+        s.pop("generation_s", None)  # timing lives in cells.csv: sweep.json is the same on any executor
+        summaries[key] = s
+        # in α order after every pile: an interrupt keeps every finished pile (and its .npz)
+        write_json(out / "sweep.json", [summaries[k] for k in keys if k in summaries])
+
+    for key in keys:  # resume: piles already generated are reused
+        if path[key].exists():
+            finished(key, pile_summary(load_packing(path[key])))
+    cells = [((a, n), (n, a, generate)) for a, n in keys if (a, n) not in summaries]
+    executor = executor_from_args(args)
+    log = CellLog(out / "cells.csv", executor)
+    for outcome in run_cells(
+        sweep_pile, cells, executor=executor, desc="piles", unit="pile", progress=not args.quiet
+    ):
+        log.record(outcome)
+        if outcome.ok:
+            packing, summary = outcome.value
+            packing.save(path[outcome.key])  # here, wherever the pile was generated
+            finished(outcome.key, summary)
+    rows = [summaries[k] for k in keys if k in summaries]
+    if rows:
+        plot_phi_alpha([r["alpha"] for r in rows], [r["phi_f"] for r in rows], out / "phi_alpha.png",
+                       contacts=[r["mean_contacts_bulk"] for r in rows])  # fmt: skip
+        print(f"wrote {out / 'sweep.json'}, {out / 'phi_alpha.png'}")
+    if log.failed:
+        raise CellsFailed("pile(s)", log.failed)
     return 0
 
 
@@ -372,6 +397,7 @@ def _add_rodpile(sub: argparse._SubParsersAction) -> None:
         help="freeze rods buried deeper than this many rod lengths while adding rods (speed-up)",
     )
     s.add_argument("--out", type=output_dir, default="runs/rodpile/sweep", help="output directory (resumes)")
+    add_executor_args(s, workers=1, what="piles")
     common(s, pile_arg=False)
     s.set_defaults(func=_cmd_rodpile_sweep)
 

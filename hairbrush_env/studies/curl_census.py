@@ -33,6 +33,8 @@ from typing import Any
 
 import numpy as np
 
+from ..executor import ExecutorConfig
+
 __all__ = [
     "CRITERIA",
     "CurlSetup",
@@ -269,9 +271,15 @@ def _table(rows: list[dict[str, float]]) -> dict[str, list]:
 
 
 def run_census_sweep(
-    setup: CurlSetup, seeds: Iterable[int], *, cache_dir, workers: int = 2, progress: bool = True
+    setup: CurlSetup,
+    seeds: Iterable[int],
+    *,
+    cache_dir,
+    executor: ExecutorConfig | None = None,
+    progress: bool = True,
 ) -> dict[str, Any]:
-    """Census over several seeds (parallel, cached, resumable via :mod:`.sweep`); mean and standard error of ρ_N."""
+    """Census over several seeds (cached, resumable via :mod:`.sweep`, run by ``executor``: this process, local
+    workers or Ray); mean and standard error of ρ_N."""
     from ..topology import empirical_lk_threshold, link_census_from_matrices
     from .sweep import run_sweep
 
@@ -279,7 +287,7 @@ def run_census_sweep(
     if not seeds:
         raise ValueError("seeds must not be empty")
     points = [{"setup": asdict(setup), "seed": int(s), "version": _POINT_VERSION} for s in seeds]
-    raw = run_sweep(run_point, points, cache_dir, workers=workers, desc="census", progress=progress)
+    raw = run_sweep(run_point, points, cache_dir, executor=executor, desc="census", progress=progress)
     stats: dict[str, Any] = {"setup": asdict(setup), "seeds": seeds, "criteria": {}}
     for crit in CRITERIA:
         stats["criteria"][crit] = _table([r[crit] for r in raw])

@@ -5,21 +5,20 @@ holding ``{"point": ..., "result": ...}``, written atomically (:func:`hairbrush_
 leaves either a complete file or none. A rerun loads the cached points and only computes the missing ones; a
 corrupt or foreign cache file (hash collision, edited by hand) is recomputed rather than trusted.
 
-Points run in a :class:`concurrent.futures.ProcessPoolExecutor` (``spawn`` context: MuJoCo and numba hold threads,
-which ``fork`` would copy in an undefined state); each finished point is cached as soon as it arrives, in the
-parent, and a tqdm bar shows progress. On ``KeyboardInterrupt`` pending points are cancelled, the finished ones
-stay cached, and the interrupt is re-raised.
+Points run where :mod:`hairbrush_env.executor` puts them (this process, local worker processes or Ray); each
+finished point is cached as soon as it arrives, in the parent, and one tqdm bar shows progress. On
+``KeyboardInterrupt`` pending points are cancelled, the finished ones stay cached, and the interrupt is re-raised.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
-import multiprocessing
 from collections.abc import Callable, Sequence
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import Any
+
+from ..executor import CellLog, CellsFailed, ExecutorConfig, run_cells
 
 __all__ = ["cache_path", "load_cached", "point_key", "run_sweep"]
 
@@ -53,7 +52,7 @@ def run_sweep(
     points: Sequence[dict[str, Any]],
     cache_dir: str | Path,
     *,
-    workers: int = 2,
+    executor: ExecutorConfig | None = None,
     desc: str = "sweep",
     progress: bool = True,
 ) -> list[Any]:
@@ -66,9 +65,10 @@ def run_sweep(
     points : sequence of dict
         JSON-serializable points (duplicates are computed once).
     cache_dir : path
-        Directory of the per-point cache files (created if needed).
-    workers : int
-        Worker processes; ``1`` runs in this process (no pickling, easier debugging).
+        Directory of the per-point cache files (created if needed) and of ``cells.csv`` (per-point timing and
+        errors, :class:`~hairbrush_env.executor.CellLog`).
+    executor : ExecutorConfig, optional
+        Where points run (default: this process; :mod:`hairbrush_env.executor`: local processes or Ray).
     desc : str
         Progress-bar label.
     progress : bool
@@ -77,14 +77,12 @@ def run_sweep(
     Returns
     -------
     list
-        ``fn(point)`` (or its cached value) for every point, in order.
+        ``fn(point)`` (or its cached value) for every point, in order. A point that raises is reported while the
+        others finish and are cached; then
+        :class:`~hairbrush_env.executor.CellsFailed` names it.
     """
-    from tqdm import tqdm
-
     from ..io import write_json
 
-    if int(workers) != workers or workers < 1:
-        raise ValueError(f"workers must be a positive integer, got {workers!r}")
     cache = Path(cache_dir)
     cache.mkdir(parents=True, exist_ok=True)
     keys = [point_key(p) for p in points]
@@ -99,35 +97,19 @@ def run_sweep(
         else:
             todo[key] = point
 
-    def store(key: str, value: Any) -> None:
-        canonical = json.loads(json.dumps(todo[key], sort_keys=True, default=float))
-        write_json(cache / f"{key}.json", {"point": canonical, "result": value})
-        results[key] = json.loads(json.dumps(value, default=_jsonable))  # same form as a cache hit
-
-    bar = tqdm(total=len(set(keys)), initial=len(results), desc=desc, disable=not progress, unit="pt")
-    try:
-        if workers == 1 or len(todo) <= 1:
-            for key, point in todo.items():
-                store(key, fn(point))
-                bar.update()
-        else:
-            ctx = multiprocessing.get_context("spawn")
-            with ProcessPoolExecutor(max_workers=int(workers), mp_context=ctx) as pool:
-                pending = {pool.submit(fn, point): key for key, point in todo.items()}
-                try:
-                    while pending:
-                        done, _ = wait(pending, return_when=FIRST_COMPLETED)
-                        for fut in done:
-                            key = pending.pop(fut)
-                            store(key, fut.result())
-                            bar.update()
-                except BaseException:
-                    for fut in pending:
-                        fut.cancel()
-                    pool.shutdown(wait=False, cancel_futures=True)
-                    raise
-    finally:
-        bar.close()
+    log = CellLog(cache / "cells.csv", executor)
+    cells = [(key, (point,)) for key, point in todo.items()]
+    for outcome in run_cells(fn, cells, executor=executor, desc=desc, unit="pt", progress=progress):
+        log.record(outcome)
+        if outcome.ok:
+            key = outcome.key
+            canonical = json.loads(json.dumps(todo[key], sort_keys=True, default=float))
+            write_json(cache / f"{key}.json", {"point": canonical, "result": outcome.value})
+            results[key] = json.loads(
+                json.dumps(outcome.value, default=_jsonable)
+            )  # same form as a cache hit
+    if log.failed:
+        raise CellsFailed("point(s)", log.failed)
     return [results[k] for k in keys]
 
 

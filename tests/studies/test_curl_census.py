@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from hairbrush_env.executor import ExecutorConfig
 from hairbrush_env.studies.curl_census import (
     CRITERIA,
     CurlSetup,
@@ -38,7 +39,13 @@ def test_rest_shapes():
 
 
 def test_pairwise_interactions_dominate(tmp_path):
-    stats = run_census_sweep(REDUCED, seeds=range(2), cache_dir=tmp_path / "cache", workers=2, progress=False)
+    stats = run_census_sweep(
+        REDUCED,
+        seeds=range(2),
+        cache_dir=tmp_path / "cache",
+        executor=ExecutorConfig(workers=2),
+        progress=False,
+    )
     for crit in CRITERIA:
         t = stats["criteria"][crit]
         mean = dict(zip(t["N"], t["mean"], strict=True))

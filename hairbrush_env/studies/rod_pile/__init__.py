@@ -13,7 +13,8 @@ apart, Fig. 5.3). One concept a module:
 * :mod:`.generate` — :func:`generate_packing`: deposition in batches, jostling, settling; determinism;
 * :mod:`.mechanics` — :func:`compress` and :func:`tension` with their results;
 * :mod:`.plots` — the figures (``plot_*``);
-* :mod:`.summary` — :func:`pile_summary`, a pile's structure in numbers (``hairbrush rodpile summary``).
+* :mod:`.summary` — :func:`pile_summary`, a pile's structure in numbers (``hairbrush rodpile summary``), and
+  :func:`sweep_pile`, one pile of an aspect-ratio sweep (``hairbrush rodpile sweep``).
 
 The study, its results and their comparison with the thesis: ``docs/rod_piles.md``.
 """
@@ -34,7 +35,7 @@ from .structure import (
     radial_packing_fraction,
     random_rod_gas,
 )
-from .summary import pile_summary
+from .summary import pile_summary, sweep_pile
 
 __all__ = [
     "GRAVITY",
@@ -63,5 +64,6 @@ __all__ = [
     "poses_from_endpoints",
     "radial_packing_fraction",
     "random_rod_gas",
+    "sweep_pile",
     "tension",
 ]
