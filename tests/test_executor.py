@@ -116,7 +116,19 @@ def test_rodpile_sweep_command_writes_the_same_sweep_on_ray_and_resumes(tmp_path
     command runs, and a rerun reuses them instead of generating again."""
     from hairbrush_env.cli import main
 
-    base = ["rodpile", "sweep", "--alphas", "10", "16", "--n-rods", "20", "20", "--container", "1.5", "--quiet"]
+    base = [
+        "rodpile",
+        "sweep",
+        "--alphas",
+        "10",
+        "16",
+        "--n-rods",
+        "20",
+        "20",
+        "--container",
+        "1.5",
+        "--quiet",
+    ]
     assert main([*base, "--out", str(tmp_path / "local"), "--workers", "2"]) == 0
     assert main([*base, "--out", str(tmp_path / "ray"), "--ray", "auto", "--workers", "2"]) == 0
     sweep = (tmp_path / "local" / "sweep.json").read_bytes()
@@ -132,7 +144,11 @@ def test_bad_executor_flags_fail_before_anything_runs(capsys, monkeypatch) -> No
     from hairbrush_env import executor
     from hairbrush_env.cli import main
 
-    for argv in (["strokes", "--workers", "0"], ["compare", "--ray", ""], ["rodpile", "sweep", "--workers", "-1"]):
+    for argv in (
+        ["strokes", "--workers", "0"],
+        ["compare", "--ray", ""],
+        ["rodpile", "sweep", "--workers", "-1"],
+    ):
         with pytest.raises(SystemExit) as exc:
             main(argv)
         assert exc.value.code == 2
