@@ -65,7 +65,7 @@ class HelpfulParser(argparse.ArgumentParser):
 
 def main(argv: Sequence[str] | None = None) -> int:
     from .commands.checks import UsageError
-    from .executor import CellsFailed
+    from .executor import CellsFailed, ExecutorUnavailable
 
     # Headless rendering default for CLI runs (the package picks EGL too when there is no display).
     os.environ.setdefault("MUJOCO_GL", "egl")
@@ -76,6 +76,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except UsageError as exc:  # found by a handler before it simulated: one line, exit 2, as argparse does
         prog = f"{parser.prog} {args.command}" + (f" {args.action}" if getattr(args, "action", None) else "")
         print(f"{prog}: error: {exc}", file=sys.stderr)
+        return 2
+    except ExecutorUnavailable as exc:  # before any cell ran
+        print(f"{parser.prog} {args.command}: error: {exc}", file=sys.stderr)
         return 2
     except CellsFailed as exc:  # the grid finished without them; its files hold every cell that succeeded
         print(f"{parser.prog} {args.command}: {exc}", file=sys.stderr)

@@ -14,7 +14,9 @@ each :class:`CellOutcome` as it finishes, whichever executor ran it:
 Outcomes arrive in completion order, which depends on scheduling; callers store each outcome under its key and write
 their results files in key order, and every cell is seeded from its own key, so the same inputs give the same
 results file whichever executor ran it. A cell that raises is reported as a failed outcome (key, error, traceback)
-while the others go on; a worker process that dies fails the cells it held (local) or is retried by Ray.
+while the others go on. A worker process that dies (killed, out of memory) is survived: locally, the cells its
+broken pool lost run again, then in a process each, so only a cell that kills its own worker fails; Ray retries
+such a cell :data:`RAY_MAX_RETRIES` times.
 :class:`CellLog` keeps the per-cell timing and errors beside the results (``cells.csv``).
 """
 
@@ -23,7 +25,9 @@ from __future__ import annotations
 import math
 import os
 import re
+import shutil
 import socket
+import tempfile
 import time
 import traceback
 from collections.abc import Callable, Hashable, Iterator, Sequence
@@ -31,10 +35,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-__all__ = ["CellLog", "CellOutcome", "CellsFailed", "ExecutorConfig", "ray_available", "run_cells"]
+__all__ = [
+    "CellLog",
+    "CellOutcome",
+    "CellsFailed",
+    "ExecutorConfig",
+    "ExecutorUnavailable",
+    "ray_available",
+    "run_cells",
+]
 
 #: Ray retries a cell whose worker process died this many times (a cell that raises is not retried).
 RAY_MAX_RETRIES = 2
+#: Object store of a local Ray instance [bytes].
+LOCAL_OBJECT_STORE = 256 * 1024**2
 
 
 @dataclass(frozen=True)
@@ -84,13 +98,22 @@ class CellOutcome:
 
 
 class CellsFailed(RuntimeError):
-    """Some cells of a grid failed; the others finished and were written. A rerun retries the failed ones."""
+    """Some cells of a grid failed; the others finished and were written. A rerun retries the failed ones.
 
-    def __init__(self, what: str, failures: Sequence[CellOutcome]) -> None:
+    ``describe`` turns a key into what the message shows (default: the key itself).
+    """
+
+    def __init__(
+        self, what: str, failures: Sequence[CellOutcome], describe: Callable[[Hashable], str] = str
+    ) -> None:
         self.failures = list(failures)
-        lines = "\n".join(f"  cell {o.key}: {o.error}" for o in self.failures)
+        lines = "\n".join(f"  cell {describe(o.key)}: {o.error}" for o in self.failures)
         head = f"{len(self.failures)} {what} failed (the others were written; a rerun retries these)"
         super().__init__(f"{head}:\n{lines}")
+
+
+class ExecutorUnavailable(RuntimeError):
+    """The requested executor cannot run (Ray not installed, no cluster at the address); nothing has run yet."""
 
 
 def ray_available() -> bool:
@@ -129,6 +152,7 @@ def run_cells(
     unit: str = "cell",
     progress: bool = True,
     postfix: Callable[[CellOutcome], dict[str, Any]] | None = None,
+    already_done: int = 0,
 ) -> Iterator[CellOutcome]:
     """Run ``fn(*args)`` for every ``(key, args)`` of ``cells``; yield each outcome as it finishes.
 
@@ -144,6 +168,8 @@ def run_cells(
         One tqdm bar over all cells.
     postfix : callable, optional
         Progress-bar postfix from each finished outcome.
+    already_done : int
+        Cells of the same grid finished before (a resumed run): the bar starts there.
 
     Yields
     ------
@@ -157,7 +183,12 @@ def run_cells(
     keys = [k for k, _ in cells]
     if len(set(keys)) != len(keys):
         raise ValueError("cells: keys must be unique")
-    bar = tqdm(total=len(cells), desc=desc, unit=unit, disable=not progress)
+    if not cells:  # nothing to run (e.g. a resumed grid): no pool, no Ray
+        return
+    bar = tqdm(
+        total=len(cells) + already_done, initial=already_done, desc=desc, unit=unit, disable=not progress
+    )
+    outcomes: Iterator[CellOutcome] = iter(())
     try:
         if executor.ray is not None:
             outcomes = _run_ray(fn, cells, executor)
@@ -171,40 +202,79 @@ def run_cells(
             bar.update(1)
             yield outcome
     finally:
+        close = getattr(outcomes, "close", None)
+        if close is not None:  # stop the executor's workers now, not when the generator is garbage-collected
+            close()
         bar.close()
 
 
 def _run_local(fn, cells, workers: int) -> Iterator[CellOutcome]:
+    """Cells in ``workers`` spawned processes. A worker that dies breaks the whole pool (CPython fails every
+    unfinished future), so unfinished cells are run again in a fresh pool; if that one breaks too, each remaining
+    cell runs in a process of its own, so that only a cell that kills its own worker fails."""
+    args = dict(cells)
+    todo = [k for k, _ in cells]
+    for _ in range(2):  # the pool, then once more for what a dead worker took down with it
+        unfinished: list[Hashable] = []
+        yield from _run_pool(fn, args, todo, workers, unfinished)
+        if not unfinished:
+            return
+        todo = unfinished
+    for key in todo:  # isolation: the remaining cells one process each
+        lost: list[Hashable] = []
+        yield from _run_pool(fn, args, [key], 1, lost)
+        if lost:
+            yield CellOutcome(
+                key, error="worker process died while running this cell (killed, out of memory?)"
+            )
+
+
+def _run_pool(fn, args: dict, keys: list, workers: int, unfinished: list) -> Iterator[CellOutcome]:
+    """One process pool over ``keys``; cells lost to a broken pool are appended to ``unfinished``."""
     import multiprocessing
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
     from concurrent.futures.process import BrokenProcessPool
 
-    ctx = multiprocessing.get_context("spawn")
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=ctx)
-    pending = {pool.submit(call_cell, fn, k, a): k for k, a in cells}
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
+    pending = {pool.submit(call_cell, fn, k, args[k]): k for k in keys}
     try:
         while pending:
             done, _ = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
                 key = pending.pop(fut)
                 try:
-                    yield fut.result()
-                except BrokenProcessPool as exc:  # a worker died (killed, out of memory): its cells fail
-                    yield CellOutcome(key, error=f"worker process died: {exc}")
+                    outcome = fut.result()
+                except BrokenProcessPool:  # a worker died: this cell did not finish
+                    unfinished.append(key)
+                    continue
+                except (
+                    Exception
+                ) as exc:  # e.g. a value that does not pickle: this cell fails, the others go on
+                    outcome = CellOutcome(
+                        key, error=f"{type(exc).__name__}: {exc}", traceback=traceback.format_exc()
+                    )
+                yield outcome
     finally:
-        for fut in pending:
-            fut.cancel()
-        pool.shutdown(wait=not pending, cancel_futures=True)
+        if pending:  # interrupted, or the caller stopped iterating: stop the cells still running
+            for fut in pending:
+                fut.cancel()
+            # no public API before Python 3.14 (terminate_workers); running cells would otherwise block exit
+            for proc in list(getattr(pool, "_processes", {}).values()):
+                proc.terminate()
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
-def _ray_init(executor: ExecutorConfig) -> bool:
-    """Connect to (or start) Ray; returns whether this call started it (and so must shut it down)."""
+def _ray_init(executor: ExecutorConfig) -> tuple[bool, str | None]:
+    """Connect to (or start) Ray. Returns whether this call connected (and so must shut down) and the private temp
+    directory of a local instance it started (removed after the shutdown)."""
     try:
         import ray
     except ImportError as exc:
-        raise RuntimeError("ray: not installed; install the extra: pip install 'hairbrush-env[ray]'") from exc
+        raise ExecutorUnavailable(
+            f"--ray {executor.ray}: Ray is not installed: pip install 'hairbrush-env[ray]'"
+        ) from exc
     if ray.is_initialized():
-        return False
+        return False, None
     # Workers must render headless like this process (hairbrush_env picks EGL when no display is present).
     env_vars = {k: os.environ[k] for k in ("MUJOCO_GL", "PYOPENGL_PLATFORM") if k in os.environ}
     common = dict(
@@ -218,16 +288,41 @@ def _ray_init(executor: ExecutorConfig) -> bool:
         try:
             ray.init(address="auto", **common)
         except ConnectionError:  # no running cluster: a local one with the requested CPUs
-            ray.init(num_cpus=executor.workers, **common)
+            # in a private temp dir, so that no other command's --ray auto joins this command's instance (and
+            # loses it when this command ends)
+            private = tempfile.mkdtemp(prefix="hb-ray-")
+            # cells pass small values: a small object store (Ray's default takes 30 % of the RAM per instance)
+            ray.init(
+                num_cpus=executor.workers, object_store_memory=LOCAL_OBJECT_STORE, _temp_dir=private, **common
+            )
+            return True, private
     else:
-        ray.init(address=executor.ray, **common)
-    return True
+        _probe(executor.ray)  # ray.init retries an unreachable address for minutes
+        try:
+            ray.init(address=executor.ray, **common)
+        except (ConnectionError, ValueError, RuntimeError) as exc:
+            raise ExecutorUnavailable(
+                f"--ray {executor.ray}: cannot connect to a Ray cluster there: {exc}"
+            ) from exc
+    return True, None
+
+
+def _probe(address: str, timeout: float = 5.0) -> None:
+    """Refuse a cluster address nothing listens at, in seconds instead of Ray's minutes of retries."""
+    hostport = address.split("://", 1)[-1]
+    host, sep, port = hostport.rpartition(":")
+    if not sep or not port.isdigit():
+        raise ExecutorUnavailable(f"--ray {address}: expected 'auto' or HOST:PORT (or ray://HOST:PORT)")
+    try:
+        socket.create_connection((host, int(port)), timeout=timeout).close()
+    except OSError as exc:
+        raise ExecutorUnavailable(f"--ray {address}: no Ray cluster answers there ({exc})") from exc
 
 
 def _run_ray(fn, cells, executor: ExecutorConfig) -> Iterator[CellOutcome]:
     import ray
 
-    started = _ray_init(executor)
+    started, private = _ray_init(executor)
     remote = ray.remote(num_cpus=1, max_retries=RAY_MAX_RETRIES)(call_cell)
     fn_ref = ray.put(fn)
     pending = {remote.remote(fn_ref, k, a): k for k, a in cells}
@@ -246,13 +341,16 @@ def _run_ray(fn, cells, executor: ExecutorConfig) -> Iterator[CellOutcome]:
             ray.cancel(ref, force=True)
         if started:
             ray.shutdown()
+        if private is not None:
+            shutil.rmtree(private, ignore_errors=True)
 
 
 class CellLog:
     """Per-cell timing and errors of a grid, ``cells.csv`` beside its results, rewritten atomically after each cell.
 
     The results file holds what the cells computed (the same whichever executor ran them); this log holds how they
-    ran: status, error, wall and CPU seconds, worker. A rerun updates the rows of the cells it runs again.
+    ran: status, error, wall and CPU seconds, worker. A rerun updates the rows of the cells it runs again. The
+    tracebacks of the cells that failed in this run go to ``cells_failed.txt``.
     """
 
     COLUMNS = ("key", "status", "seconds", "cpu_seconds", "worker", "executor", "error")
@@ -267,7 +365,7 @@ class CellLog:
         self.failed: list[CellOutcome] = []
 
     def record(self, outcome: CellOutcome) -> None:
-        from .io import write_csv_rows
+        from .io import write_csv_rows, write_text
 
         key = (
             "/".join(str(part) for part in outcome.key)
@@ -285,4 +383,9 @@ class CellLog:
         }
         if not outcome.ok:
             self.failed.append(outcome)
+            # the tracebacks of this run's failed cells, beside the log (workers' own output is not shown)
+            write_text(
+                self.path.with_name(self.path.stem + "_failed.txt"),
+                "".join(f"== cell {o.key}: {o.error}\n{o.traceback or ''}\n" for o in self.failed),
+            )
         write_csv_rows(self.path, list(self._rows.values()), list(self.COLUMNS))

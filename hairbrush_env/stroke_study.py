@@ -44,6 +44,8 @@ def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[flo
     for v in vals:
         if not (math.isfinite(v) and lo <= v <= hi):
             raise ValueError(f"{name}: values must be in [{lo}, {hi}], got {v!r}")
+    if len(set(vals)) != len(vals):
+        raise ValueError(f"{name}: values must not repeat, got {vals!r}")
     return vals
 
 
@@ -123,8 +125,8 @@ def measure_strokes(
     lengths = _check("brush_lengths", brush_lengths, 1e-3, 1.0)
     speed_list = _check("speeds", speeds, 1e-3, 0.5)
     seed_list = [int(s) for s in seeds]
-    if not seed_list:
-        raise ValueError("seeds: need at least one seed")
+    if not seed_list or len(set(seed_list)) != len(seed_list):
+        raise ValueError(f"seeds: need distinct seeds, got {seed_list!r}")
 
     csv_path = Path(out) / "strokes.csv" if out is not None else None
     rows = read_strokes(csv_path) if csv_path is not None and csv_path.exists() else []

@@ -2,13 +2,17 @@
 
     python scripts/fit_sigmoid.py [--seeds 0,1] [--tol 0.05] [--wigs all] [--workers N | --ray auto] --out runs/sigmoid
 
-Writes OUT/sigmoid_fit.json (k, bounds, per-wig safe lengths) and OUT/sigmoid_fit.png.
+Writes OUT/sigmoid_fit.json (k, bounds, per-wig safe lengths), OUT/sigmoid_fit.png, OUT/safe_points.json (per wig,
+as each finishes: a rerun with the same settings resumes) and OUT/cells.csv (per-wig timing and errors).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
+from dataclasses import asdict
+from pathlib import Path
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
@@ -16,10 +20,10 @@ import numpy as np
 
 import hairbrush_env  # noqa: F401
 from controllers.sigmoid import THESIS_K
-from controllers.sigmoid_fit import fit_k, plot_fit, safe_point
+from controllers.sigmoid_fit import SafePoint, fit_k, plot_fit, safe_point
 from hairbrush_env.commands import add_executor_args, add_webcam_args, executor_from_args
 from hairbrush_env.commands.checks import number_list, positive, seed, wig_names
-from hairbrush_env.executor import CellsFailed, run_cells
+from hairbrush_env.executor import CellLog, CellsFailed, run_cells
 from hairbrush_env.io import write_json
 
 
@@ -33,15 +37,30 @@ def main() -> None:
     p.add_argument("--out", default="runs/sigmoid")
     a = p.parse_args()
     wigs, seeds = a.wigs, [int(s) for s in a.seeds]
-    cells = [(wig, (wig, seeds, a.tol, a.width, a.height)) for wig in wigs]
-    found, failed = {}, []
-    for outcome in run_cells(safe_point, cells, executor=executor_from_args(a), desc="wigs", unit="wig"):
+    # per-wig points, rewritten after every wig: a rerun with the same settings skips the wigs already found
+    out = Path(a.out)
+    settings = {"seeds": seeds, "tol": a.tol, "width": a.width, "height": a.height}
+    saved = json.loads((out / "safe_points.json").read_text()) if (out / "safe_points.json").exists() else {}
+    found = (
+        {w: SafePoint(**pt) for w, pt in saved.get("points", {}).items()}
+        if saved.get("settings") == settings
+        else {}
+    )
+    cells = [(wig, (wig, seeds, a.tol, a.width, a.height)) for wig in wigs if wig not in found]
+    executor = executor_from_args(a)
+    log = CellLog(out / "cells.csv", executor)
+    for outcome in run_cells(
+        safe_point, cells, executor=executor, desc="wigs", unit="wig", already_done=len(found)
+    ):
+        log.record(outcome)
         if outcome.ok:
             found[outcome.key] = outcome.value
-        else:
-            failed.append(outcome)
-    if failed:
-        raise SystemExit(str(CellsFailed("wig(s)", failed)))
+            write_json(
+                out / "safe_points.json",
+                {"settings": settings, "points": {w: asdict(pt) for w, pt in found.items()}},
+            )
+    if log.failed:
+        raise SystemExit(str(CellsFailed("wig(s)", log.failed)))
     points = [found[wig] for wig in wigs]  # in the order asked, whichever worker finished first
     k, lo, hi = fit_k([pt.rc for pt in points], [pt.safe_length for pt in points])
     write_json(

@@ -69,22 +69,56 @@ def test_local_processes_give_what_this_process_gives_and_failures_do_not_stop_t
     assert all(serial[("c", x)][1] is None for x in (0, 1, 2, 3, 5))
 
 
-def test_a_killed_local_worker_fails_its_cells_and_the_log_names_them(tmp_path) -> None:
+def test_a_killed_local_worker_fails_only_its_own_cell_and_the_log_names_it(tmp_path) -> None:
+    """A worker that dies breaks CPython's whole pool; the cells it took down with it run again, so only the cell
+    that kills its worker fails, with its traceback-free error in cells.csv."""
     log = CellLog(tmp_path / "cells.csv", ExecutorConfig(workers=2))
-    cells = [(x, (x,)) for x in range(4)]
+    cells = [(x, (x,)) for x in range(5)]
+    out = {}
     for o in run_cells(
         _cell_that_kills_its_worker, cells, executor=ExecutorConfig(workers=2), progress=False
     ):
         log.record(o)
-    failed = {o.key for o in log.failed}
-    assert 2 in failed and all("died" in o.error for o in log.failed)
+        out[o.key] = o
+    assert {o.key for o in log.failed} == {2} and "died" in out[2].error
+    assert {k: o.value for k, o in out.items() if o.ok} == {0: 0, 1: 1, 3: 3, 4: 4}
     text = (tmp_path / "cells.csv").read_text()
-    assert text.startswith("key,status,seconds") and "failed" in text and "local ×2" in text
+    assert text.startswith("key,status,seconds") and text.count(",failed,") == 1 and "local ×2" in text
+    assert "== cell 2" in (tmp_path / "cells_failed.txt").read_text()
     err = CellsFailed("cell(s)", log.failed)
     assert "cell 2:" in str(err) and "rerun" in str(err)
 
 
-def test_ray_gives_what_local_processes_give_and_retries_a_killed_worker() -> None:
+def _cell_returning_something_unpicklable(x: int):
+    return (lambda: x) if x == 1 else x
+
+
+def test_a_value_that_does_not_pickle_fails_its_cell_only() -> None:
+    cells = [(x, (x,)) for x in range(3)]
+    out = {o.key: o for o in run_cells(_cell_returning_something_unpicklable, cells, executor=ExecutorConfig(2),
+                                        progress=False)}  # fmt: skip
+    assert [k for k in sorted(out) if out[k].ok] == [0, 2] and "pickle" in out[1].error.lower()
+
+
+def test_closing_the_stream_stops_the_local_workers() -> None:
+    import time
+
+    cells = [(x, (x,)) for x in range(4)]
+    stream = run_cells(_sleeping_cell, cells, executor=ExecutorConfig(workers=2), progress=False)
+    first = next(stream)
+    t0 = time.perf_counter()
+    stream.close()  # as when the caller is interrupted: running cells are terminated, not waited for
+    assert first.ok and time.perf_counter() - t0 < 5.0
+
+
+def _sleeping_cell(x: int) -> int:
+    import time
+
+    time.sleep(0.0 if x == 0 else 30.0)
+    return x
+
+
+def _ray_gives_what_local_processes_give_and_retries_a_killed_worker() -> None:
     _ray_ships_this_module_by_value()
     local = _outcomes(ExecutorConfig(workers=2), fail_on=1)
     assert _outcomes(ExecutorConfig(workers=2, ray="auto"), fail_on=1) == local
@@ -96,7 +130,7 @@ def test_ray_gives_what_local_processes_give_and_retries_a_killed_worker() -> No
     assert not out[2].ok and out[2].error
 
 
-def test_a_stroke_grid_is_the_same_file_bit_for_bit_locally_and_on_ray(tmp_path) -> None:
+def _a_stroke_grid_is_the_same_file_bit_for_bit_locally_and_on_ray(tmp_path) -> None:
     """The issue's check: the same inputs give the same results file, whichever executor ran the cells (each stroke
     is seeded from its own key, never from the order in which workers took the cells)."""
     grid = {"brush_lengths": [0.15, 0.3], "speeds": [0.2], "seeds": [0, 1], "progress": False}
@@ -111,7 +145,7 @@ def test_a_stroke_grid_is_the_same_file_bit_for_bit_locally_and_on_ray(tmp_path)
     assert cells.count(",ok,") == 4 and "ray auto ×2" in cells
 
 
-def test_rodpile_sweep_command_writes_the_same_sweep_on_ray_and_resumes(tmp_path) -> None:
+def _rodpile_sweep_command_writes_the_same_sweep_on_ray_and_resumes(tmp_path) -> None:
     """``hairbrush rodpile sweep --ray auto``: the same sweep.json as local processes; piles are saved where the
     command runs, and a rerun reuses them instead of generating again."""
     from hairbrush_env.cli import main
@@ -140,6 +174,16 @@ def test_rodpile_sweep_command_writes_the_same_sweep_on_ray_and_resumes(tmp_path
     assert (tmp_path / "ray" / "sweep.json").read_bytes() == sweep
 
 
+def test_ray_executor(tmp_path) -> None:
+    """Every check that starts a local Ray instance, one after another in one test: two local instances started at
+    once by two test workers on one machine crashed one of the workers (docs/cluster.md)."""
+    _ray_gives_what_local_processes_give_and_retries_a_killed_worker()
+    for name in ("strokes", "rodpile"):
+        (tmp_path / name).mkdir()
+    _a_stroke_grid_is_the_same_file_bit_for_bit_locally_and_on_ray(tmp_path / "strokes")
+    _rodpile_sweep_command_writes_the_same_sweep_on_ray_and_resumes(tmp_path / "rodpile")
+
+
 def test_bad_executor_flags_fail_before_anything_runs(capsys, monkeypatch) -> None:
     from hairbrush_env import executor
     from hairbrush_env.cli import main
@@ -147,11 +191,18 @@ def test_bad_executor_flags_fail_before_anything_runs(capsys, monkeypatch) -> No
     for argv in (
         ["strokes", "--workers", "0"],
         ["compare", "--ray", ""],
+        ["compare", "--ray", "head-node"],
         ["rodpile", "sweep", "--workers", "-1"],
+        ["strokes", "--brush-lengths", "0.3,0.3"],
     ):
         with pytest.raises(SystemExit) as exc:
             main(argv)
         assert exc.value.code == 2
+    # an address nothing listens at is refused in seconds, before any cell runs (Ray itself retries for minutes)
+    assert (
+        main(["rodpile", "sweep", "--alphas", "10", "--n-rods", "20", "--ray", "127.0.0.1:1", "--quiet"]) == 2
+    )
+    assert "no Ray cluster answers" in capsys.readouterr().err
     monkeypatch.setattr(executor, "ray_available", lambda: False)
     with pytest.raises(SystemExit) as exc:
         main(["helix", "sweep", "--vary", "q=4,6", "--ray", "auto"])

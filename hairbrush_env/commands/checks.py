@@ -71,13 +71,16 @@ non_negative = number(0.0)
 
 
 def number_list(item: Callable[[str], float] = positive) -> Callable[[str], list[float]]:
-    """Comma-separated numbers, each checked by ``item``."""
+    """Comma-separated distinct numbers, each checked by ``item``."""
 
     def parse(text: str) -> list[float]:
         parts = [p.strip() for p in text.split(",") if p.strip()]
         if not parts:
             raise argparse.ArgumentTypeError(f"expected comma-separated numbers, got {text!r}")
-        return [item(p) for p in parts]
+        values = [item(p) for p in parts]
+        if len(set(values)) != len(values):  # each value is a cell of a grid (or a seed): twice is a typo
+            raise argparse.ArgumentTypeError(f"values must not repeat, got {text!r}")
+        return values
 
     return parse
 
@@ -188,8 +191,9 @@ def ray_address(text: str) -> str:
     from ..executor import ray_available
 
     text = text.strip()
-    if not text:
-        raise argparse.ArgumentTypeError("expected 'auto' or a Ray cluster address, got ''")
+    host, sep, port = text.split("://", 1)[-1].rpartition(":")
+    if text != "auto" and not (host and sep and port.isdigit()):
+        raise argparse.ArgumentTypeError(f"expected 'auto' or HOST:PORT (or ray://HOST:PORT), got {text!r}")
     if not ray_available():
         raise argparse.ArgumentTypeError(
             f"{text!r} needs Ray, which is not installed: pip install 'hairbrush-env[ray]'"

@@ -119,6 +119,8 @@ def _cmd_rodpile_sweep(args: argparse.Namespace) -> int:
     generate = {"length": args.length, "container_diameter": args.container * args.length, "seed": args.seed,
                 "friction": args.friction, "batch_size": args.batch, "freeze_depth": args.freeze_depth}  # fmt: skip
     keys = list(zip(args.alphas, args.n_rods, strict=True))
+    if len(set(keys)) != len(keys):
+        raise UsageError("--alphas", f"each (α, rods) pair once, got {keys}")
     path = {(a, n): out / f"pile_alpha{a:g}_n{n}_seed{args.seed}.npz" for a, n in keys}
     summaries: dict = {}
 

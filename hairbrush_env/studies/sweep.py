@@ -99,7 +99,9 @@ def run_sweep(
 
     log = CellLog(cache / "cells.csv", executor)
     cells = [(key, (point,)) for key, point in todo.items()]
-    for outcome in run_cells(fn, cells, executor=executor, desc=desc, unit="pt", progress=progress):
+    for outcome in run_cells(
+        fn, cells, executor=executor, desc=desc, unit="pt", progress=progress, already_done=len(results)
+    ):
         log.record(outcome)
         if outcome.ok:
             key = outcome.key
@@ -109,7 +111,7 @@ def run_sweep(
                 json.dumps(outcome.value, default=_jsonable)
             )  # same form as a cache hit
     if log.failed:
-        raise CellsFailed("point(s)", log.failed)
+        raise CellsFailed("point(s)", log.failed, describe=lambda key: json.dumps(todo[key], sort_keys=True))
     return [results[k] for k in keys]
 
 

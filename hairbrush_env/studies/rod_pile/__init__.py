@@ -11,15 +11,15 @@ apart, Fig. 5.3). One concept a module:
   :func:`contact_numbers`, :func:`orientations`, Philipse's random contact equation;
 * :mod:`.pile` — the MuJoCo model (:class:`SimParams`, :class:`Pile`): its model choices and their reasons;
 * :mod:`.generate` — :func:`generate_packing`: deposition in batches, jostling, settling; determinism;
+  :func:`sweep_pile`, one pile of an aspect-ratio sweep (``hairbrush rodpile sweep``);
 * :mod:`.mechanics` — :func:`compress` and :func:`tension` with their results;
 * :mod:`.plots` — the figures (``plot_*``);
-* :mod:`.summary` — :func:`pile_summary`, a pile's structure in numbers (``hairbrush rodpile summary``), and
-  :func:`sweep_pile`, one pile of an aspect-ratio sweep (``hairbrush rodpile sweep``).
+* :mod:`.summary` — :func:`pile_summary`, a pile's structure in numbers (``hairbrush rodpile summary``).
 
 The study, its results and their comparison with the thesis: ``docs/rod_piles.md``.
 """
 
-from .generate import generate_packing
+from .generate import generate_packing, sweep_pile
 from .mechanics import CompressionResult, TensionResult, compress, tension
 from .packing import GRAVITY, STEEL_DENSITY, Packing, load_packing, pile_height
 from .pile import Pile, SimParams, poses_from_endpoints
@@ -35,7 +35,7 @@ from .structure import (
     radial_packing_fraction,
     random_rod_gas,
 )
-from .summary import pile_summary, sweep_pile
+from .summary import pile_summary
 
 __all__ = [
     "GRAVITY",

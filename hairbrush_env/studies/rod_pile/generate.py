@@ -31,6 +31,7 @@ from .pile import Pile, SimParams, poses_from_endpoints
 
 __all__ = [
     "generate_packing",
+    "sweep_pile",
 ]
 
 
@@ -251,3 +252,16 @@ def generate_packing(
         "wall_time_s": time.perf_counter() - t_wall,
     }  # fmt: skip
     return Packing.from_endpoints(ep, diameter, cdia, meta)
+
+
+def sweep_pile(n_rods: int, alpha: float, generate: dict):
+    """One cell of an aspect-ratio sweep (Fig. 4.5): ``generate_packing(n_rods, L, L / alpha, **generate)`` (seeded by
+    ``generate["seed"]``, whichever worker builds it) and its :func:`~.summary.pile_summary`. Returns
+    ``(packing, summary)``; the caller saves the packing, so piles land where the command runs, not on a cluster
+    node's disk."""
+    from .summary import pile_summary
+
+    length = generate["length"]
+    kwargs = {k: v for k, v in generate.items() if k != "length"}
+    p = generate_packing(n_rods, length, length / alpha, progress=False, **kwargs)
+    return p, pile_summary(p)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["pile_summary", "sweep_pile"]
+__all__ = ["pile_summary"]
 
 
 def pile_summary(p) -> dict:
@@ -68,15 +68,3 @@ def pile_summary(p) -> dict:
         "profile": profile, "phi_alpha_vs_wall_margin_over_L": radial,
         "phi_alpha_annuli": (annuli * alpha).tolist(),
     }  # fmt: skip
-
-
-def sweep_pile(n_rods: int, alpha: float, generate: dict):
-    """One cell of an aspect-ratio sweep (Fig. 4.5): ``generate_packing(n_rods, L, L / alpha, **generate)`` (seeded by
-    ``generate["seed"]``, whichever worker builds it) and its :func:`pile_summary`. Returns ``(packing, summary)``;
-    the caller saves the packing, so piles land where the command runs, not on a cluster node's disk."""
-    from .generate import generate_packing
-
-    length = generate["length"]
-    kwargs = {k: v for k, v in generate.items() if k != "length"}
-    p = generate_packing(n_rods, length, length / alpha, progress=False, **kwargs)
-    return p, pile_summary(p)
