@@ -11,6 +11,7 @@ Sections (each prints a markdown table; every row of a table comes from this one
 * ``solver`` — PGS iteration cap (and CG) of the chain wig: CPU vs how far squeezed strands sink into each other;
 * ``pass_through`` — full strokes through straight, curly and coily at three seeds, every physics step checked;
 * ``profile`` — where a stroke's CPU goes: MuJoCo's stages, the Python around them, the per-step pass-through check;
+* ``levers`` — what solver options, sensors, the exclude list or a 2 ms contact step would save per stroke;
 * ``force_table`` — maximum force vs curliness and b_l (thesis Fig. 3.7) with the per-step pass-through check.
 
 Cases: ``chain (default)`` (the default wig and comb), ``flex wave 1`` (the first release's wig and scene,
@@ -29,7 +30,7 @@ from collections.abc import Callable, Sequence
 import mujoco
 import numpy as np
 
-from hairbrush_env import hair, scene
+from hairbrush_env import hair, rods, scene
 from hairbrush_env.brush import get_brush
 from hairbrush_env.pass_through import PassThroughMonitor
 from hairbrush_env.studies import rod_validation
@@ -311,6 +312,104 @@ def section_pull_through(args: argparse.Namespace) -> None:
                   "F_max N per seed"], rows))  # fmt: skip
 
 
+def section_levers(args: argparse.Namespace) -> None:
+    """What MuJoCo options would save per step in a stroke: mid-pull snapshots of the default wig (seed 0), each
+    lever stepped from the same snapshots against the baseline of this run; then the 2 ms contact step."""
+    print(f"\n## Per-step levers on mid-pull snapshots of '{hair.DEFAULT_WIG}' (seed 0)\n")
+    sim = scene.BrushingSim(scene.SceneConfig(wig=hair.DEFAULT_WIG))
+    sim.reset(0)
+    spec_state = mujoco.mjtState.mjSTATE_INTEGRATION
+    snaps: list[np.ndarray] = []
+    count = [0]
+
+    def grab(s: scene.BrushingSim) -> None:
+        count[0] += 1
+        if s.model.opt.timestep < 0.005 and count[0] % 400 == 0:
+            st = np.empty(mujoco.mj_stateSize(s.model, spec_state))
+            mujoco.mj_getState(s.model, s.data, st, spec_state)
+            snaps.append(st)
+
+    sim.add_step_observer(grab)
+    sim.stroke(1.0, abort_force=None)
+    sim.remove_step_observer(grab)
+    sim.use_step(contact=True)
+    snaps = snaps[1:6]
+    n_steps = 50 if args.quick else 150
+
+    def cost(m: mujoco.MjModel) -> tuple[float, float, float]:
+        d = mujoco.MjData(m)
+        cpu = iters = ncon = 0.0
+        for st in snaps:
+            mujoco.mj_setState(m, d, st, spec_state)
+            t0 = time.process_time()
+            for _ in range(n_steps):
+                mujoco.mj_step(m, d)
+                iters += d.solver_niter[0]
+                ncon += d.ncon
+            cpu += time.process_time() - t0
+        n = n_steps * len(snaps)
+        return 1e3 * cpu / n, iters / n, ncon / n
+
+    m = sim.model
+    base = cost(m)
+    rows = [
+        [
+            "baseline (PGS ≤ 50, speculative, sparse)",
+            f"{base[0]:.2f}",
+            "1.00",
+            f"{base[1]:.1f}",
+            f"{base[2]:.0f}",
+        ]
+    ]
+
+    def lever(label: str, model: mujoco.MjModel) -> None:
+        c = cost(model)
+        rows.append([label, f"{c[0]:.2f}", f"{base[0] / c[0]:.2f}", f"{c[1]:.1f}", f"{c[2]:.0f}"])
+
+    speculative = int(mujoco.mjtEnableBit.mjENBL_SPECULATIVE)
+    m.opt.enableflags &= ~speculative
+    lever("speculative contacts off", m)
+    m.opt.enableflags |= speculative
+    for cap in (30, 15):
+        m.opt.iterations = cap
+        lever(f"PGS ≤ {cap} iterations", m)
+    m.opt.iterations = rods.CHAIN_SOLVER_ITERATIONS
+    m.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
+    lever("sensors off", m)
+    m.opt.disableflags &= ~int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
+    m.opt.jacobian = mujoco.mjtJacobian.mjJAC_DENSE
+    lever("dense Jacobian", m)
+    m.opt.jacobian = mujoco.mjtJacobian.mjJAC_AUTO
+    m.opt.enableflags &= ~speculative
+    m.opt.iterations = 15
+    lever("speculative off and PGS ≤ 15 together", m)
+    m.opt.enableflags |= speculative
+    m.opt.iterations = rods.CHAIN_SOLVER_ITERATIONS
+    lever("baseline again (drift of this run)", m)
+    spec = scene.build_scene(scene.SceneConfig(wig=hair.DEFAULT_WIG))
+    for e in list(spec.excludes):
+        spec.delete(e)
+    bare = spec.compile()
+    bare.opt.timestep, bare.opt.solver = m.opt.timestep, m.opt.solver
+    lever(f"no exclude list ({m.nexclude} pairs; strands self-collide)", bare)
+    sim.close()
+    print(_table(["lever", "CPU ms/step", "× baseline speed", "PGS iterations", "contacts"], rows))
+
+    print("\nThe contact step itself: one full stroke, every physics step checked for pass-through\n")
+    rows = []
+    for dt in (0.001, 0.002):
+        sim = scene.BrushingSim(scene.SceneConfig(wig=hair.DEFAULT_WIG, contact_timestep=dt))
+        sim.reset(0)
+        mon = PassThroughMonitor(sim)
+        t0 = time.process_time()
+        sim.stroke(1.0, abort_force=None, rng=np.random.default_rng(0))
+        cpu = time.process_time() - t0
+        rows.append([f"{1e3 * dt:.0f} ms", f"{cpu:.1f}", str(mon.steps), str(len(mon.crossings)),
+                     f"{mon.hair_hair_fraction:.2f}"])  # fmt: skip
+        sim.close()
+    print(_table(["contact step", "CPU s (with the check)", "steps", "crossings", "hair–hair / Σr"], rows))
+
+
 SECTIONS: list[Callable[[argparse.Namespace], None]] = [
     section_validation,
     section_rest,
@@ -319,6 +418,7 @@ SECTIONS: list[Callable[[argparse.Namespace], None]] = [
     section_solver,
     section_pass_through,
     section_profile,
+    section_levers,
     section_force_table,
 ]
 
