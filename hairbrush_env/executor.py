@@ -41,6 +41,7 @@ __all__ = [
     "CellsFailed",
     "ExecutorConfig",
     "ExecutorUnavailable",
+    "cluster_address",
     "ray_available",
     "run_cells",
 ]
@@ -307,14 +308,19 @@ def _ray_init(executor: ExecutorConfig) -> tuple[bool, str | None]:
     return True, None
 
 
+def cluster_address(text: str) -> tuple[str, int] | None:
+    """``(host, port)`` of a Ray cluster address ``HOST:PORT`` or ``ray://HOST:PORT``; ``None`` if it is not one."""
+    host, sep, port = text.split("://", 1)[-1].rpartition(":")
+    return (host, int(port)) if host and sep and port.isdigit() else None
+
+
 def _probe(address: str, timeout: float = 5.0) -> None:
     """Refuse a cluster address nothing listens at, in seconds instead of Ray's minutes of retries."""
-    hostport = address.split("://", 1)[-1]
-    host, sep, port = hostport.rpartition(":")
-    if not sep or not port.isdigit():
+    parsed = cluster_address(address)
+    if parsed is None:
         raise ExecutorUnavailable(f"--ray {address}: expected 'auto' or HOST:PORT (or ray://HOST:PORT)")
     try:
-        socket.create_connection((host, int(port)), timeout=timeout).close()
+        socket.create_connection(parsed, timeout=timeout).close()
     except OSError as exc:
         raise ExecutorUnavailable(f"--ray {address}: no Ray cluster answers there ({exc})") from exc
 
@@ -355,12 +361,12 @@ class CellLog:
 
     COLUMNS = ("key", "status", "seconds", "cpu_seconds", "worker", "executor", "error")
 
-    def __init__(self, path: str | Path, executor: ExecutorConfig | None = None) -> None:
+    def __init__(self, path: str | Path | None, executor: ExecutorConfig | None = None) -> None:
         from .io import read_csv_rows
 
-        self.path = Path(path)
+        self.path = Path(path) if path is not None else None  # None: failures kept in memory only
         self.executor = (executor or ExecutorConfig()).label
-        rows = read_csv_rows(self.path) if self.path.exists() else []
+        rows = read_csv_rows(self.path) if self.path is not None and self.path.exists() else []
         self._rows: dict[str, dict[str, Any]] = {r["key"]: r for r in rows}
         self.failed: list[CellOutcome] = []
 
@@ -383,6 +389,9 @@ class CellLog:
         }
         if not outcome.ok:
             self.failed.append(outcome)
+        if self.path is None:
+            return
+        if not outcome.ok:
             # the tracebacks of this run's failed cells, beside the log (workers' own output is not shown)
             write_text(
                 self.path.with_name(self.path.stem + "_failed.txt"),

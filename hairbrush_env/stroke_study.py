@@ -139,13 +139,12 @@ def measure_strokes(
         for s in seed_list
         if (w, b, v, s) not in done
     ]
-    log = CellLog(Path(out) / "cells.csv", executor) if out is not None else None
+    log = CellLog(Path(out) / "cells.csv" if out is not None else None, executor)
 
     def postfix(o: CellOutcome) -> dict[str, Any]:
         w, b, v, _ = o.key
         return {"wig": w, "b_l": b, "v": v, "f_max": f"{o.value['max_force']:.1f}"}
 
-    failed = []
     try:
         for outcome in run_cells(
             stroke_cell,
@@ -156,16 +155,12 @@ def measure_strokes(
             progress=progress,
             postfix=postfix,
         ):
-            if log is not None:
-                log.record(outcome)
-            if not outcome.ok:
-                failed.append(outcome)
-                continue
-            rows.append(outcome.value)
-            if (
-                csv_path is not None
-            ):  # after every stroke: an interrupt loses at most the strokes still running
-                write_csv_rows(csv_path, _sorted(rows), COLUMNS)
+            log.record(outcome)
+            if outcome.ok:
+                rows.append(outcome.value)
+                # after every stroke: an interrupt loses at most the strokes still running
+                if csv_path is not None:
+                    write_csv_rows(csv_path, _sorted(rows), COLUMNS)
     finally:
         close_sims()
     rows = _sorted(rows)
@@ -174,8 +169,8 @@ def measure_strokes(
         write_text(Path(out) / "summary.md", summary_markdown(rows))
         if rows:
             plot_strokes(rows, out)
-    if failed:
-        raise CellsFailed("stroke(s)", failed)
+    if log.failed:
+        raise CellsFailed("stroke(s)", log.failed)
     return rows
 
 

@@ -188,11 +188,10 @@ def input_file(text: str) -> str:
 
 def ray_address(text: str) -> str:
     """``--ray``: ``auto`` or a cluster address; the optional ``ray`` extra must be installed."""
-    from ..executor import ray_available
+    from ..executor import cluster_address, ray_available
 
     text = text.strip()
-    host, sep, port = text.split("://", 1)[-1].rpartition(":")
-    if text != "auto" and not (host and sep and port.isdigit()):
+    if text != "auto" and cluster_address(text) is None:
         raise argparse.ArgumentTypeError(f"expected 'auto' or HOST:PORT (or ray://HOST:PORT), got {text!r}")
     if not ray_available():
         raise argparse.ArgumentTypeError(
