@@ -208,6 +208,7 @@ class BrushingSim:
             float(self.root_origin[2]) - float(self.model.geom_size[plate, 2]) - self.config.scalp_clearance
         )
         self._tool_geoms = np.append(self._bristle_geoms, plate)
+        self._is_hair = self.model.geom_group == hairmod.HAIR_GEOM_GROUP
         # Surface contact starts at the sum of the two geoms' margins (MuJoCo 4.0.1 adds them), i.e. this far
         # from a strand's centerline.
         self._contact_reach = self.wig.strand_radius + hairmod.CONTACT_MARGIN + TOOL_CONTACT_MARGIN
@@ -379,24 +380,43 @@ class BrushingSim:
     def _needs_fine_step(self, target: np.ndarray) -> bool:
         """Whether the next control period must run at the contact step.
 
-        It must while the brush's bounding box (bristles and head plate, swept towards ``target``) is within the
-        contact reach plus :data:`_FREE_CLEARANCE` of the hair's, and while any strand point moved more than
-        :data:`_QUIET_MOTION` in the last control period: at 10 ms, strands swinging after a stroke cross each other
-        like strands under the brush.
-        Everything else — approach, parking, a brush wholly below hair that has come to rest — is free space.
+        It must while the brush's box (bristles and head plate, swept towards ``target``) is within the contact reach
+        plus :data:`_FREE_CLEARANCE` of the hair's, while any strand point moved more than :data:`_QUIET_MOTION` in
+        the last control period (at 10 ms, strands swinging after a stroke cross each other like strands under the
+        brush), and while any two strands touch. Everything else — moves beside or below hair whose strands hang
+        apart and at rest — is free space.
         """
         d = self.data
         curves = self.hair_curve_array()
         last, self._last_curves = self._last_curves, curves
         if last is not None and float(np.abs(curves - last).max()) > _QUIET_MOTION:
             return True
-        g = self._tool_geoms
-        reach = self.model.geom_rbound[g][:, None]
+        # Hair–hair contacts soften 400-fold at the free step: their time constant (hair.CONTACT_SOLREF, 1 ms) is
+        # clamped to twice the step, and entwined strands pressed together by their prestress sank through each
+        # other at 10 ms (coily, seed 0, a quiet wig beside the comb between two strokes).
+        ncon = d.ncon
+        if ncon and bool(self._is_hair[d.contact.geom[:ncon]].all(axis=1).any()):
+            return True
+        lo, hi = self.tool_box()
         sweep = np.abs(np.asarray(target, dtype=float) - d.site_xpos[self._tcp_site])
-        lo = (d.geom_xpos[g] - reach).min(axis=0) - sweep
-        hi = (d.geom_xpos[g] + reach).max(axis=0) + sweep
+        lo, hi = lo - sweep, hi + sweep
         gap = np.maximum(lo - curves.max(axis=(0, 1)), curves.min(axis=(0, 1)) - hi).max()
         return bool(gap < self._contact_reach + _FREE_CLEARANCE)
+
+    def tool_box(self) -> tuple[np.ndarray, np.ndarray]:
+        """World axis-aligned box around the bristles and the head plate (corners ``lo``, ``hi``) [m].
+
+        Each geom's own box (``geom_aabb``, in its frame) is turned into the world frame. Bounding spheres
+        (``geom_rbound``) are no bound worth having here: the comb's head plate is 0.46 m wide, so its sphere reached
+        23 cm in front of the tines and every free-space move near the hair ran at the contact step.
+        """
+        g = self._tool_geoms
+        d = self.data
+        rot = d.geom_xmat[g].reshape(-1, 3, 3)
+        aabb = self.model.geom_aabb[g]
+        centre = d.geom_xpos[g] + np.einsum("gij,gj->gi", rot, aabb[:, :3])
+        half = np.einsum("gij,gj->gi", np.abs(rot), aabb[:, 3:])
+        return (centre - half).min(axis=0), (centre + half).max(axis=0)
 
     def use_step(self, *, contact: bool) -> None:
         """Switch to the contact step (``contact_timestep``, :attr:`contact_solver`) or the free-space step.

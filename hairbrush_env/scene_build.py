@@ -82,13 +82,15 @@ class SceneConfig:
     brush_depth : float
         TCP x offset from the wig centre during a stroke [m] (0: bristles span the middle 25 mm of the curtain).
     stroke_speed : float
-        Default pulling speed [m/s].
+        Default pulling speed [m/s]. 0.2: the thesis finds that speed has minimal effect on the maximum force and that
+        a faster pull varies less (Fig. 3.8; here a 4× change moves it by a few per cent), and the pull is most of
+        a stroke's contact steps, so 0.2 costs 0.6× the CPU of 0.1 per full stroke (``docs/detangling.md``, *Cost*).
+        The wave-1 stroke (:func:`wave1_scene`) pulled at 0.1.
     approach_speed : float
-        Speed of insertion into and withdrawal through the hair [m/s].
+        Speed of insertion into and withdrawal through the hair [m/s] (wave 1: 0.15).
     free_speed : float
         Speed of moves beside or below the hair (up the retract plane to the start height, out from under the
-        hair after a stroke that went through) [m/s]: the hair still swings, so these run at the contact step and
-        their length is CPU time (half of a comb stroke's at 0.15 m/s).
+        hair after a stroke that went through) [m/s]: while the hair still swings these run at the contact step.
     load_cell : LoadCellConfig
         Instrument (sensor names of the nested brush).
     hair_hair : bool
@@ -120,8 +122,8 @@ class SceneConfig:
     camera_distance: float = 0.42
     free_end_z: float = 0.62
     brush_depth: float = 0.0
-    stroke_speed: float = 0.1
-    approach_speed: float = 0.15
+    stroke_speed: float = 0.2
+    approach_speed: float = 0.3
     free_speed: float = 0.4
     load_cell: LoadCellConfig = field(
         default_factory=lambda: LoadCellConfig(
@@ -186,10 +188,13 @@ class SceneConfig:
 
 def wave1_scene(wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG, **changes) -> SceneConfig:
     """The first release's scene for a wig, kept as a benchmark case: :func:`hairbrush_env.hair.wave1_wig`, the soft
-    ``paddle`` brush with a 9 mm scalp clearance and the short pull (``pull_floor_z = None``)."""
-    return SceneConfig(
-        wig=hairmod.wave1_wig(wig), brush="paddle", scalp_clearance=0.009, pull_floor_z=None, **changes
+    ``paddle`` brush with a 9 mm scalp clearance, the short pull (``pull_floor_z = None``) and its speeds (pull at
+    0.1 m/s, insertion and withdrawal at 0.15 m/s)."""
+    kw = dict(
+        wig=hairmod.wave1_wig(wig), brush="paddle", scalp_clearance=0.009, pull_floor_z=None, stroke_speed=0.1,
+        approach_speed=0.15,
     )
+    return SceneConfig(**(kw | changes))
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,7 @@
 """Exploration probe: repeated pull-through strokes with a custom wig and brush (docs/detangling.md).
 
     python scripts/probe_detangle.py NAME '{"wig": {"base": "curly", "cohesion": 12.5, ...WigConfig fields},
-        "brush": {...BrushConfig fields}, "scene": {...SceneConfig fields}, "strokes": 6, "seed": 0, "b_l": 1.0}'
+        "brush": "comb" or {...BrushConfig fields}, "scene": {...SceneConfig fields}, "strokes": 6, "seed": 0, "b_l": 1.0}'
 
 Writes runs/probe/NAME.jsonl, one line per stroke (hairbrush_env.studies.repeated_strokes rows).
 """
@@ -23,7 +23,8 @@ base = hair.PRESETS[w.pop("base", "curly")]
 if "cohesion" in w:
     w["young"] = hair.wisp_young(w.get("strand_radius", base.strand_radius), cohesion=w.pop("cohesion"))
 wig = base.replace(**w)
-brush = BrushConfig(**cfg.get("brush", {}))
+b = cfg.get("brush", "comb")
+brush = b if isinstance(b, str) else BrushConfig(**b)  # a preset name (the scene default "comb") or fields
 sc = SceneConfig(wig=wig, brush=brush, **cfg.get("scene", {}))
 t0 = time.process_time()
 sim = BrushingSim(sc)

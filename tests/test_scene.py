@@ -154,6 +154,34 @@ def test_short_stroke_samples_at_10hz(sim: scene.BrushingSim) -> None:
         sim.stroke(1.5)
 
 
+def test_tool_box_is_tight_around_the_bristles(sim: scene.BrushingSim) -> None:
+    """The brush's world box holds every bristle and is not the bounding spheres' box (the comb's 0.46 m head plate
+    made that reach 23 cm in front of the tines, so every move near the hair ran at the contact step)."""
+    sim.reset(0)
+    lo, hi = sim.tool_box()
+    pts = sim.bristle_segments().reshape(-1, 3)
+    r = sim.bristle_radius
+    assert np.all(pts - r >= lo - 1e-9) and np.all(pts + r <= hi + 1e-9)
+    reach = pts.max(axis=0) + r
+    assert hi[0] - reach[0] < 1e-3  # the box ends at the tine tips
+    assert hi[0] - lo[0] < 0.1
+
+
+def test_free_step_only_beside_hair_whose_strands_hang_apart(sim: scene.BrushingSim) -> None:
+    """Straight strands hang apart: the approach beside the settled wig runs at the 10 ms step. Entwined curly
+    strands touch, and a hair–hair contact is 400× softer at 10 ms (its 1 ms time constant is clamped to twice the
+    step; coily strands crossed there): every step of a curly stroke is a contact step."""
+    with scene.BrushingSim(scene.SceneConfig(wig="straight")) as straight:
+        straight.reset(0)
+        n0 = straight.n_steps
+        res = straight.stroke(0.3, rng=np.random.default_rng(1))
+        assert straight.n_steps - n0 < (res.sim_time - 0.1) / straight.config.contact_timestep
+    sim.reset(0)
+    n0 = sim.n_steps
+    res = sim.stroke(0.3, rng=np.random.default_rng(1))
+    assert sim.n_steps - n0 == pytest.approx(res.sim_time / sim.config.contact_timestep, abs=1)
+
+
 def _full_stroke_checked(sim: scene.BrushingSim, seed: int) -> PassThroughMonitor:
     """A full pull-through stroke (b_l = 1, no abort) watched at every physics step; also checks the strand lengths."""
     sim.reset(seed)

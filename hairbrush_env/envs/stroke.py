@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import EzPickle
 
+from ..scene_build import SceneConfig
 from .common import (
     FINISH_FORCE_TOLERANCE_N,
     LOAD_CELL_CAPACITY_N,
@@ -23,7 +24,11 @@ from .common import (
 )
 
 
-def default_trace_length(hanging_length: float, stroke_speed: float = 0.1) -> int:
+#: The env's pull speed [m/s]: the scene's (``SceneConfig.stroke_speed``).
+DEFAULT_STROKE_SPEED: float = SceneConfig.stroke_speed
+
+
+def default_trace_length(hanging_length: float, stroke_speed: float = DEFAULT_STROKE_SPEED) -> int:
     """Samples of a full stroke at 10 Hz (the default ``trace_length``): the hanging length plus how far a jammed
     brush drags the curls below their rest ends before it comes out (a pull may go on to 0.22 m below the default
     free-end height, ``SceneConfig.pull_floor_z``). Envs on several wigs that must share one observation space
@@ -107,7 +112,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `force_threshold` | 10.0 | pain threshold F_T [N]: pain violations and the pain penalty count samples ≥ it |
     | `abort_force` | 10.0 | a stroke stops at the first sample ≥ this [N]; `None` pulls through (default: F_T, the
       closed loop's abort; a user brushing someone wants the robot to stop at pain unless asked otherwise) |
-    | `stroke_speed` | 0.1 | brush speed during the pull [m/s] |
+    | `stroke_speed` | 0.2 | brush speed during the pull [m/s] (the scene's; force hardly depends on it, Fig. 3.8) |
     | `min_brush_length` | 0.1 | b_l for action −1 |
     | `trace_length` | auto | samples kept in `force_trace` (a full stroke at 10 Hz) |
     | `n_wig_states` | 4 | number of distinct pre-brushed states the seed chooses from (shake seeds 0 … n − 1) |
@@ -119,7 +124,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     ## Version History
     - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added, and
-      the finish rule no longer counts strokes aborted at F_T.
+      the finish rule no longer counts strokes aborted at F_T. Issue #11: the pull speed went from 0.1 to 0.2 m/s
+      (the force trace halves in length) and insertion and withdrawal from 0.15 to 0.3 m/s.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
@@ -135,7 +141,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         height: int = 120,
         force_threshold: float = PAIN_THRESHOLD_N,
         abort_force: float | None = PAIN_THRESHOLD_N,
-        stroke_speed: float = 0.1,
+        stroke_speed: float = DEFAULT_STROKE_SPEED,
         min_brush_length: float = 0.1,
         trace_length: int | None = None,
         n_wig_states: int = 4,
