@@ -1,7 +1,8 @@
 """Exploration probe: repeated pull-through strokes with a custom wig and brush (docs/detangling.md).
 
     python scripts/probe_detangle.py NAME '{"wig": {"base": "curly", "cohesion": 12.5, ...WigConfig fields},
-        "brush": "comb" or {...BrushConfig fields}, "scene": {...SceneConfig fields}, "strokes": 6, "seed": 0, "b_l": 1.0}'
+        "brush": "comb" or {...BrushConfig fields}, "scene": {...SceneConfig fields},
+        "strokes": 6, "seed": 0, "b_l": 1.0}'
 
 Writes runs/probe/NAME.jsonl, one line per stroke (hairbrush_env.studies.repeated_strokes rows).
 """

@@ -23,7 +23,6 @@ from .common import (
     check_positive,
 )
 
-
 #: The env's pull speed [m/s]: the scene's (``SceneConfig.stroke_speed``).
 DEFAULT_STROKE_SPEED: float = SceneConfig.stroke_speed
 
