@@ -191,7 +191,11 @@ def wave1_scene(wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG, **changes) -
     ``paddle`` brush with a 9 mm scalp clearance, the short pull (``pull_floor_z = None``) and its speeds (pull at
     0.1 m/s, insertion and withdrawal at 0.15 m/s)."""
     kw = dict(
-        wig=hairmod.wave1_wig(wig), brush="paddle", scalp_clearance=0.009, pull_floor_z=None, stroke_speed=0.1,
+        wig=hairmod.wave1_wig(wig),
+        brush="paddle",
+        scalp_clearance=0.009,
+        pull_floor_z=None,
+        stroke_speed=0.1,
         approach_speed=0.15,
     )
     return SceneConfig(**(kw | changes))
