@@ -82,12 +82,13 @@ class SceneConfig:
     brush_depth : float
         TCP x offset from the wig centre during a stroke [m] (0: bristles span the middle 25 mm of the curtain).
     stroke_speed : float
-        Default pulling speed [m/s]. 0.2: the thesis finds that speed has minimal effect on the maximum force and that
-        a faster pull varies less (Fig. 3.8; here a 4× change moves it by a few per cent), and the pull is most of
-        a stroke's contact steps, so 0.2 costs 0.6× the CPU of 0.1 per full stroke (``docs/detangling.md``, *Cost*).
-        The wave-1 stroke (:func:`wave1_scene`) pulled at 0.1.
+        Default pulling speed [m/s]. The thesis finds that speed has minimal effect on the maximum force (Fig. 3.8;
+        here a 4× change moves it by a few per cent), but it does change how much a stroke combs out: six full
+        strokes at 0.2 m/s left 0.34–0.40 of curly's entanglement (seeds 0–2) against 0.20–0.27 at 0.1, for 0.7×
+        the CPU (``docs/detangling.md``, *Cost*).
     approach_speed : float
-        Speed of insertion into and withdrawal through the hair [m/s] (wave 1: 0.15).
+        Speed of insertion into and withdrawal through the hair [m/s]. 0.3 combed out as much as 0.15 (wave 1)
+        for 0.8× the CPU of a stroke.
     free_speed : float
         Speed of moves beside or below the hair (up the retract plane to the start height, out from under the
         hair after a stroke that went through) [m/s]: while the hair still swings these run at the contact step.
@@ -122,7 +123,7 @@ class SceneConfig:
     camera_distance: float = 0.42
     free_end_z: float = 0.62
     brush_depth: float = 0.0
-    stroke_speed: float = 0.2
+    stroke_speed: float = 0.1
     approach_speed: float = 0.3
     free_speed: float = 0.4
     load_cell: LoadCellConfig = field(

@@ -111,7 +111,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `force_threshold` | 10.0 | pain threshold F_T [N]: pain violations and the pain penalty count samples ≥ it |
     | `abort_force` | 10.0 | a stroke stops at the first sample ≥ this [N]; `None` pulls through (default: F_T, the
       closed loop's abort; a user brushing someone wants the robot to stop at pain unless asked otherwise) |
-    | `stroke_speed` | 0.2 | brush speed during the pull [m/s] (the scene's; force hardly depends on it, Fig. 3.8) |
+    | `stroke_speed` | 0.1 | brush speed during the pull [m/s] (the scene's default) |
     | `min_brush_length` | 0.1 | b_l for action −1 |
     | `trace_length` | auto | samples kept in `force_trace` (a full stroke at 10 Hz) |
     | `n_wig_states` | 4 | number of distinct pre-brushed states the seed chooses from (shake seeds 0 … n − 1) |
@@ -123,8 +123,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
 
     ## Version History
     - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added, and
-      the finish rule no longer counts strokes aborted at F_T. Issue #11: the pull speed went from 0.1 to 0.2 m/s
-      (the force trace halves in length) and insertion and withdrawal from 0.15 to 0.3 m/s.
+      the finish rule no longer counts strokes aborted at F_T. Issue #11: insertion and withdrawal went from 0.15 to 0.3
+      m/s.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
