@@ -222,3 +222,19 @@ def test_stress_free_state_of_an_entwined_pair(splay: float, linked: bool) -> No
         assert link == pytest.approx(turns, abs=0.05)
     else:
         assert link < 0.25  # measured: 1.60 built in, 0.13 left at ψ = π/2 (0.20 at π/3)
+
+
+def test_still_entwined_counts_pairs_wound_in_their_built_in_sense() -> None:
+    """Combed-apart neighbours keep a small link of the other sense; only pairs still wound as built count."""
+    wig = hair.PRESETS["curly"].replace(n_strands=8, n_triples=0)
+    model, layout = _wig_model(wig)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    ent = hair.Entanglement(model, layout)
+    assert ent.still_entwined(data) == len(layout.pairs)
+    curves = ent.curve_array(data)
+    b = layout.pairs[0][1]
+    curves[b] = curves[b] + np.array([0.0, 0.3, 0.0])  # pair 0 pulled apart: no link left
+    ent.curve_array = lambda _data: curves
+    assert abs(ent.pair_links(data)[0]) < 0.05
+    assert ent.still_entwined(data) == len(layout.pairs) - 1

@@ -38,7 +38,7 @@ __all__ = [
 
 COLUMNS = [
     "wig", "seed", "brush_length", "stroke", "max_force", "entwined", "made", "entanglement", "crossings",
-    "min_hair_hair", "min_hair_bristle", "cpu_s", "sim_s", "steps", "aborted", "diverged",
+    "min_hair_hair", "min_hair_bristle", "cpu_s", "sim_s", "steps", "aborted", "diverged", "still_entwined",
 ]  # fmt: skip
 
 
@@ -58,7 +58,9 @@ def repeated_strokes(
     ``entwined`` and ``made`` (``Σ |Lk|``), ``entanglement`` (their sum), ``crossings``, ``min_hair_hair`` and
     ``min_hair_bristle`` (fractions of the sum of radii, over the stroke's physics steps), ``cpu_s`` (process CPU
     time of the stroke, monitor included), ``sim_s`` (simulated time), ``steps`` (physics steps), ``aborted``,
-    ``diverged``. ``on_stroke`` is called with each row as it is made (progress, checkpointing).
+    ``diverged``, ``still_entwined`` (entwined pairs still wound in their built-in sense,
+    :meth:`~hairbrush_env.hair.Entanglement.still_entwined`). ``on_stroke`` is called with each row as it is made
+    (progress, checkpointing).
     """
     if not (isinstance(n_strokes, int) and n_strokes >= 1):
         raise ValueError(f"n_strokes must be an integer >= 1, got {n_strokes!r}")
@@ -67,7 +69,7 @@ def repeated_strokes(
     rows = [
         dict(stroke=0, max_force=0.0, entwined=entwined, made=made, entanglement=entwined + made, crossings=0,
              min_hair_hair=math.nan, min_hair_bristle=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False,
-             diverged=False)
+             diverged=False, still_entwined=sim.entanglement_meter.still_entwined(sim.data))
     ]  # fmt: skip
     if on_stroke is not None:
         on_stroke(rows[0])
@@ -94,6 +96,7 @@ def repeated_strokes(
             steps=sim.n_steps - steps0,
             aborted=res.aborted,
             diverged=res.diverged,
+            still_entwined=sim.entanglement_meter.still_entwined(sim.data),
         )
         rows.append(row)
         if on_stroke is not None:
@@ -116,7 +119,7 @@ def _read(path: Path) -> list[dict[str, Any]]:
         path,
         floats=("brush_length", "max_force", "entwined", "made", "entanglement", "min_hair_hair",
                 "min_hair_bristle", "cpu_s", "sim_s"),
-        ints=("seed", "stroke", "crossings", "steps"),
+        ints=("seed", "stroke", "crossings", "steps", "still_entwined"),
         bools=("aborted", "diverged"),
     )  # fmt: skip
 
@@ -197,8 +200,8 @@ def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
     """One line per ``(wig, seed)``: forces per stroke, the eq. 3.4 plateau, entanglement left, pass-through."""
     lines = [
         "| wig | seed | b_l | F_max per stroke [N] | plateau (eq. 3.4) | Σ|Lk| start | left after each stroke "
-        "| crossings | min hair–hair |",
-        "|---|---:|---:|---|---:|---:|---|---:|---:|",
+        "| entwined pairs (start → end) | crossings | min hair–hair |",
+        "|---|---:|---:|---|---:|---:|---|---:|---:|---:|",
     ]
     for (wig, seed), rs in _series(rows).items():
         e0 = rs[0]["entanglement"]
@@ -209,7 +212,7 @@ def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
         lines.append(
             f"| {wig} | {seed} | {rs[0]['brush_length']:.2f} | {' '.join(f'{f:.1f}' for f in forces)} | "
             f"{plateau if plateau is not None else '–'} | {e0:.1f} | "
-            f"{left} | "
+            f"{left} | {rs[0].get('still_entwined', '?')} → {rs[-1].get('still_entwined', '?')} | "
             f"{sum(r['crossings'] for r in rs[1:])} | {hh:.2f} |"
         )
     return "\n".join(lines) + "\n"
