@@ -1,0 +1,49 @@
+"""Exploration probe: where the entwined link sits along the strands, before and after repeated full strokes.
+
+    python scripts/probe_link_depth.py WIG SEED STROKES     # e.g. curly 0 6
+
+Prints, after each stroke (b_l = 1, no abort), Σ|Lk| of the entwined pairs split by depth below the roots (each
+pair's link density, ``topology.link_density``, summed in its own sense) and, at the end, every pair's signed link
+next to the link it was built with (docs/detangling.md, *What holds the link*).
+"""
+
+import os
+import sys
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+import numpy as np
+
+from hairbrush_env.scene import BrushingSim, SceneConfig
+from hairbrush_env.topology.gauss import link_density
+
+wig, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+sim = BrushingSim(SceneConfig(wig=wig))
+sim.reset(seed)
+print(f"roots z {sim.hair_top:.3f} m, highest stroke start {sim.start_height(1.0):.3f} m")
+edges = np.array([0, 0.008, 0.02, 0.04, 0.06, 0.08, 0.12, 0.2, 1.0])  # depth below the roots [m]
+
+
+def report(tag: str) -> None:
+    curves = sim.hair_curves()
+    band = np.zeros(len(edges) - 1)
+    total = 0.0
+    for i, j in sim.entanglement_meter.pairs:
+        a, b = curves[i], curves[j]
+        _, lam = link_density(a, b)
+        ell = lam * np.linalg.norm(np.diff(0.5 * (a + b), axis=0), axis=1)
+        depth = sim.hair_top - 0.25 * (a[:-1, 2] + a[1:, 2] + b[:-1, 2] + b[1:, 2])
+        lk = ell.sum()
+        total += abs(lk)
+        k = np.clip(np.digitize(depth, edges) - 1, 0, len(band) - 1)
+        np.add.at(band, k, np.sign(lk) * ell)
+    bands = " ".join(f"{1e3 * edges[q]:.0f}-{1e3 * edges[q + 1]:.0f}:{band[q]:.2f}" for q in range(len(band)))
+    print(f"{tag}: Σ|Lk| entwined {total:.2f}; by depth below the roots [mm] {bands}", flush=True)
+
+
+report("pre-brushed")
+for k in range(1, n + 1):
+    res = sim.stroke(1.0, abort_force=None)
+    report(f"stroke {k} (F_max {res.max_force:.1f} N)")
+print("pair Lk now:    ", " ".join(f"{v:+.2f}" for v in sim.pair_links()))
+print("pair Lk built:  ", " ".join(f"{v:+.2f}" for v in sim.layout.pair_link))
+print("still entwined: ", sim.entanglement_meter.still_entwined(sim.data), "of", len(sim.layout.pairs))
