@@ -46,6 +46,7 @@ from .sensors import LoadCell
 __all__ = [
     "BRUSH_TCP",
     "HEAD_POS",
+    "MAX_STROKE_Y",
     "PAIN_THRESHOLD",
     "TOOL_CONTACT_MARGIN",
     "BrushingSim",
@@ -63,12 +64,14 @@ _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half h
 _RETRACT_GAP = 0.015  # tine tips this far in front of the hair before the brush moves beside it
 _QUIET_SECONDS = 0.3  # end of the pre-brushed settle at the contact step (BrushingSim.settled_state)
 _STEADY_SECONDS, _STEADY_DAMPING = 1.0, 30.0  # hand-steadied rest after the shake (BrushingSim.settled_state)
-# Free-space stepping (BrushingSim._needs_fine_step): the brush's bounding box (geoms' bounding spheres) and the box
+# Free-space stepping (BrushingSim._needs_fine_step): the brush's box (BrushingSim.tool_box) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
 # apart [m] — a strand would have to move 0.3 m/s towards the brush to meet it within one 10 ms control period — and
 # no strand point moving more than half a wisp radius per control period (4 cm/s).
 _FREE_CLEARANCE = 0.003
 _QUIET_MOTION = 4e-4
+MAX_STROKE_Y = 0.03
+"""Largest sideways offset of a stroke [m] (``BrushingSim.stroke(y=...)``): more than a comb's tine pitch."""
 
 
 @dataclass(frozen=True)
@@ -470,6 +473,7 @@ class BrushingSim:
         speed: float | None = None,
         abort_force: float | None = PAIN_THRESHOLD,
         rng: np.random.Generator | None = None,
+        y: float = 0.0,
     ) -> StrokeResult:
         """One stroke of thesis Algorithm 1 (inner loop) from ``b_l = start_fraction``.
 
@@ -486,6 +490,9 @@ class BrushingSim:
             stroke, the thesis's Fig. 3.11).
         rng : np.random.Generator, optional
             Load-cell noise source for this stroke.
+        y : float
+            Sideways offset of the brush along the curtain [m] (within ±:data:`MAX_STROKE_Y`): a comb moved by part
+            of its tine pitch passes between the strands of pairs its tines passed beside.
 
         Returns
         -------
@@ -498,6 +505,9 @@ class BrushingSim:
             raise ValueError(f"speed must be > 0, got {speed!r}")
         if abort_force is not None and not (isinstance(abort_force, (int, float)) and abort_force > 0):
             raise ValueError(f"abort_force must be > 0 or None, got {abort_force!r}")
+        if not (isinstance(y, (int, float)) and abs(y) <= MAX_STROKE_Y):
+            raise ValueError(f"y must be within ±{MAX_STROKE_Y} m, got {y!r}")
+        y = float(y)
         abort_at = math.inf if abort_force is None else float(abort_force)
         if rng is not None:
             self.load_cell.rng = rng
@@ -531,19 +541,19 @@ class BrushingSim:
         hair_front = float(self.hair_curve_array()[..., 0].min())
         retract_x = min(self.retract_x, hair_front - _RETRACT_GAP - 0.5 * self.brush.tine_length)
         here = self._target
-        ok = self._move(np.array([retract_x, 0.0, here[2]]), fast)
-        ok = ok and self._move(np.array([retract_x, 0.0, z_start]), free)
+        ok = self._move(np.array([retract_x, here[1], here[2]]), fast)
+        ok = ok and self._move(np.array([retract_x, y, z_start]), free)
         for _ in range(round(0.1 / self.config.control_dt)):
             ok = ok and self._tick(self._target, None, None)
         if not ok:
             return result(empty, False)
         self.load_cell.tare(self.data)
         # Insertion to depth, then the pull.
-        if not self._move(np.array([self.depth_x, 0.0, z_start]), fast):
+        if not self._move(np.array([self.depth_x, y, z_start]), fast):
             return result(empty, False)
         self.load_cell.reset(self.data)
         samples: list = []
-        end = np.array([self.depth_x, 0.0, z_end])
+        end = np.array([self.depth_x, y, z_end])
         path = plan_stroke(self._target, end, speed, self.config.control_dt)
         vel = np.array([0.0, 0.0, -speed])
         aborted = cleared = False
@@ -564,7 +574,7 @@ class BrushingSim:
         )
         if not self.diverged:
             # below every strand the way out is free space; an aborted stroke backs out through the hair
-            self._move(np.array([retract_x, 0.0, self._target[2]]), free if cleared else fast)
+            self._move(np.array([retract_x, y, self._target[2]]), free if cleared else fast)
         return result(trace, aborted)
 
     def step_velocity(self, v_z: float, v_depth: float, dt: float = 0.1) -> VelocityStep:

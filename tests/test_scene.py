@@ -182,6 +182,16 @@ def test_free_step_only_beside_hair_whose_strands_hang_apart(sim: scene.Brushing
     assert sim.n_steps - n0 == pytest.approx(res.sim_time / sim.config.contact_timestep, abs=1)
 
 
+def test_stroke_sideways_offset(sim: scene.BrushingSim) -> None:
+    """``stroke(y=...)`` pulls the brush that far along the curtain, and rejects offsets beyond MAX_STROKE_Y."""
+    sim.reset(0)
+    res = sim.stroke(0.2, y=0.01, rng=np.random.default_rng(1))
+    assert not res.diverged
+    assert sim.brush_position()[1] == pytest.approx(0.01, abs=1e-3)
+    with pytest.raises(ValueError, match="y must be within"):
+        sim.stroke(0.2, y=scene.MAX_STROKE_Y + 0.01)
+
+
 def _full_stroke_checked(sim: scene.BrushingSim, seed: int) -> PassThroughMonitor:
     """A full pull-through stroke (b_l = 1, no abort) watched at every physics step; also checks the strand lengths."""
     sim.reset(seed)
