@@ -398,8 +398,10 @@ class BrushingSim:
         # clamped to twice the step, and entwined strands pressed together by their prestress sank through each
         # other at 10 ms (coily, seed 0, a quiet wig beside the comb between two strokes).
         ncon = d.ncon
-        if ncon and bool(self._is_hair[d.contact.geom[:ncon]].all(axis=1).any()):
-            return True
+        if ncon:
+            g = d.contact.geom[:ncon]  # -1 for flex contacts (the wave-1 wig): no chain geoms
+            if bool(((g >= 0).all(axis=1) & self._is_hair[g].all(axis=1)).any()):
+                return True
         lo, hi = self.tool_box()
         sweep = np.abs(np.asarray(target, dtype=float) - d.site_xpos[self._tcp_site])
         lo, hi = lo - sweep, hi + sweep
