@@ -2,7 +2,9 @@
 
     python scripts/probe_detangle.py NAME '{"wig": {"base": "curly", "cohesion": 12.5, ...WigConfig fields},
         "brush": "comb" or {...BrushConfig fields}, "scene": {...SceneConfig fields},
-        "strokes": 6, "seed": 0, "b_l": 1.0}'
+        "strokes": 6, "seed": 0, "b_l": 1.0, "y": 0.0 or [y1, y2, ...]}'
+
+"y": the brush's sideways offset [m], or offsets that the strokes cycle through.
 
 Writes runs/probe/NAME.jsonl, one line per stroke (hairbrush_env.studies.repeated_strokes rows).
 """
@@ -50,5 +52,6 @@ with open(out, "w") as f:
         brush_length=cfg.get("b_l", 1.0),
         n_strokes=cfg.get("strokes", 6),
         on_stroke=rec,
+        y=cfg.get("y", 0.0),
     )
 print(name, "total CPU", time.process_time() - t0)

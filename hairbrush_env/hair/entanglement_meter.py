@@ -76,10 +76,12 @@ class Entanglement:
         c = self.curves(data) if curves is None else curves
         return np.array([linking_number(c[i], c[j], closed=False) for i, j in self.pairs])
 
-    def still_entwined(self, data: mujoco.MjData) -> int:
+    def still_entwined(self, data: mujoco.MjData, *, link: np.ndarray | None = None) -> int:
         """Entwined pairs still wound in their built-in sense by at least :data:`CROSS_LINK_THRESHOLD` turns: the
-        tangles left, as distinct from the small link that strands combed apart keep hanging side by side."""
-        lk = self.pair_links(data) * self.built_in_sign
+        tangles left, as distinct from the small link that strands combed apart keep hanging side by side.
+        ``link``: this state's :meth:`link_matrix`, if already read."""
+        mat = self.link_matrix(data) if link is None else link
+        lk = mat[self.pairs[:, 0], self.pairs[:, 1]] * self.built_in_sign
         return int(np.count_nonzero(lk >= CROSS_LINK_THRESHOLD))
 
     def link_matrix(self, data: mujoco.MjData) -> np.ndarray:
@@ -91,10 +93,11 @@ class Entanglement:
         out[pairs[:, 0], pairs[:, 1]] = link
         return out + out.T
 
-    def breakdown(self, data: mujoco.MjData) -> tuple[float, float]:
+    def breakdown(self, data: mujoco.MjData, *, link: np.ndarray | None = None) -> tuple[float, float]:
         """``(entwined, made)``: ``Σ |Lk|`` over the entwined pairs, and over all other strand pairs whose
-        ``|Lk| ≥`` :data:`CROSS_LINK_THRESHOLD` (link a brush or the shaking made between different groups)."""
-        mat = np.abs(self.link_matrix(data))
+        ``|Lk| ≥`` :data:`CROSS_LINK_THRESHOLD` (link a brush or the shaking made between different groups).
+        ``link``: this state's :meth:`link_matrix`, if already read."""
+        mat = np.abs(self.link_matrix(data) if link is None else link)
         other = mat[self._other_pairs]
         return float(mat[self.pairs[:, 0], self.pairs[:, 1]].sum()), float(
             other[other >= CROSS_LINK_THRESHOLD].sum()

@@ -22,7 +22,7 @@ import numpy as np
 
 from ..io import read_csv_rows, write_csv_rows, write_text
 from ..pass_through import PassThroughMonitor
-from ..scene import BrushingSim
+from ..scene import MAX_STROKE_Y, BrushingSim
 
 if TYPE_CHECKING:
     from ..hair import WigConfig
@@ -51,6 +51,7 @@ def repeated_strokes(
     abort_force: float | None = None,
     monitor: bool = True,
     on_stroke: Callable[[dict[str, Any]], None] | None = None,
+    y: float | Sequence[float] = 0.0,
 ) -> list[dict[str, Any]]:
     """``n_strokes`` strokes from ``b_l = brush_length`` on the pre-brushed wig of ``seed``.
 
@@ -60,16 +61,20 @@ def repeated_strokes(
     time of the stroke, monitor included), ``sim_s`` (simulated time), ``steps`` (physics steps), ``aborted``,
     ``diverged``, ``still_entwined`` (entwined pairs still wound in their built-in sense,
     :meth:`~hairbrush_env.hair.Entanglement.still_entwined`). ``on_stroke`` is called with each row as it is made
-    (progress, checkpointing).
+    (progress, checkpointing). ``y``: the brush's sideways offset [m] (``BrushingSim.stroke(y=...)``), or a
+    sequence that stroke ``k`` cycles through (``y[(k - 1) % len(y)]``).
     """
     if not (isinstance(n_strokes, int) and n_strokes >= 1):
         raise ValueError(f"n_strokes must be an integer >= 1, got {n_strokes!r}")
+    ys = [float(y)] if isinstance(y, (int, float)) else [float(v) for v in y]
+    if not ys or any(not abs(v) <= MAX_STROKE_Y for v in ys):
+        raise ValueError(
+            f"y must be a number or a non-empty sequence of numbers within ±{MAX_STROKE_Y}, got {y!r}"
+        )
     sim.reset(seed)
-    entwined, made = sim.entanglement_meter.breakdown(sim.data)
     rows = [
-        dict(stroke=0, max_force=0.0, entwined=entwined, made=made, entanglement=entwined + made, crossings=0,
-             min_hair_hair=math.nan, min_hair_bristle=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False,
-             diverged=False, still_entwined=sim.entanglement_meter.still_entwined(sim.data))
+        dict(stroke=0, max_force=0.0, **_entanglement_columns(sim), crossings=0, min_hair_hair=math.nan,
+             min_hair_bristle=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False, diverged=False)
     ]  # fmt: skip
     if on_stroke is not None:
         on_stroke(rows[0])
@@ -77,17 +82,14 @@ def repeated_strokes(
         mon = PassThroughMonitor(sim) if monitor else None
         steps0 = sim.n_steps
         t0 = time.process_time()
-        res = sim.stroke(brush_length, abort_force=abort_force)
+        res = sim.stroke(brush_length, abort_force=abort_force, y=ys[(k - 1) % len(ys)])
         cpu = time.process_time() - t0
         if mon is not None:
             mon.detach()
-        entwined, made = sim.entanglement_meter.breakdown(sim.data)
         row = dict(
             stroke=k,
             max_force=res.max_force,
-            entwined=entwined,
-            made=made,
-            entanglement=entwined + made,
+            **_entanglement_columns(sim),
             crossings=len(mon.crossings) if mon is not None else -1,
             min_hair_hair=mon.hair_hair_fraction if mon is not None else math.nan,
             min_hair_bristle=mon.hair_bristle_fraction if mon is not None else math.nan,
@@ -96,7 +98,6 @@ def repeated_strokes(
             steps=sim.n_steps - steps0,
             aborted=res.aborted,
             diverged=res.diverged,
-            still_entwined=sim.entanglement_meter.still_entwined(sim.data),
         )
         rows.append(row)
         if on_stroke is not None:
@@ -104,6 +105,15 @@ def repeated_strokes(
         if res.diverged:
             break
     return rows
+
+
+def _entanglement_columns(sim: BrushingSim) -> dict[str, Any]:
+    """``entwined``, ``made``, ``entanglement`` and ``still_entwined`` of the current state, from one link matrix."""
+    meter = sim.entanglement_meter
+    link = meter.link_matrix(sim.data)
+    entwined, made = meter.breakdown(sim.data, link=link)
+    return dict(entwined=entwined, made=made, entanglement=entwined + made,
+                still_entwined=meter.still_entwined(sim.data, link=link))  # fmt: skip
 
 
 def plateau_stroke(max_forces: list[float], tolerance: float = 0.4) -> int | None:

@@ -31,6 +31,13 @@ def test_rows_of_a_short_run():
         assert r["entanglement"] == pytest.approx(r["entwined"] + r["made"])
     with pytest.raises(ValueError, match="n_strokes"):
         repeated_strokes(sim, n_strokes=0)
+    n_steps = sim.n_steps
+    with pytest.raises(ValueError, match="y must be"):
+        repeated_strokes(sim, n_strokes=2, y=[0.0, 0.5])  # rejected before any stroke
+    assert sim.n_steps == n_steps
+    sideways = repeated_strokes(sim, seed=0, n_strokes=2, y=[0.0, 0.01], monitor=False)
+    assert sim.brush_position()[1] == pytest.approx(0.01, abs=1e-3)  # stroke 2 at y = 0.01
+    assert all(0 <= r["still_entwined"] <= len(sim.layout.pairs) for r in sideways)
 
 
 @pytest.fixture(scope="module")
