@@ -88,7 +88,7 @@ class SceneConfig:
         the CPU (``docs/detangling.md``, *Cost*).
     approach_speed : float
         Speed of insertion into and withdrawal through the hair [m/s]. 0.3 combed out as much as 0.15 (wave 1)
-        for 0.8× the CPU of a stroke.
+        for 0.85× the CPU of a stroke.
     free_speed : float
         Speed of moves beside or below the hair (up the retract plane to the start height, out from under the
         hair after a stroke that went through) [m/s]: while the hair still swings these run at the contact step.
