@@ -235,6 +235,16 @@ def test_no_pass_through_full_stroke_more_seeds(wig: str, seed: int) -> None:
         _assert_no_pass_through(_full_stroke_checked(s, seed))
 
 
+@pytest.mark.slow
+def test_held_out_wavy_root_does_not_lock_under_the_comb() -> None:
+    """held_out_wavy, seed 0: its second full stroke locked a root's hinges (twist past −90°, MuJoCo's
+    singular-inertia warning) before the root frames were rolled away from gimbal lock (rods.chain._root_roll)."""
+    with scene.BrushingSim(scene.SceneConfig(wig="held_out_wavy")) as s:
+        s.reset(0)
+        for _ in range(3):
+            assert not s.stroke(1.0, abort_force=None).diverged
+
+
 def test_pass_through_limits_follow_the_model(sim: scene.BrushingSim) -> None:
     mon = PassThroughMonitor(sim)
     mon.detach()

@@ -10,7 +10,10 @@ body per edge, nested root to tip, each holding a capsule along its local x axis
 where ``l̄_k = (ℓ_{k−1} + ℓ_k) / 2`` is the Voronoi length of vertex ``k`` (Bergou et al. 2008). At a clamped root
 the spring stands for the curvature of the first half edge, ``l̄_0 = ℓ_0 / 2`` (stiffness ``2 E I / ℓ_0``), the
 body-chain twin of the flex's ghost edge. The rest shape is ``qpos0``: body frames follow the rest centerline with
-parallel-transported (twist-free) frames, so every spring is relaxed in the given curve and curls stay curled.
+parallel-transported (twist-free) frames, so every spring is relaxed in the given curve and curls stay curled. A
+root whose stress-free shape is turned (``RodSpec.root_rest_turn``) has its root springs referenced to the turned
+frame, and its frames are rolled about the tangent so that this reference stays far from the hinges' gimbal lock
+(:func:`_root_roll`).
 Damping is stiffness-proportional (``damping · k``, in seconds like the flex's Rayleigh damping); no armature.
 
 Why three hinges: a ball joint's one isotropic stiffness makes torsion ``1 + ν`` too stiff, and two bending hinges
@@ -52,6 +55,8 @@ _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
 # Euler-angle sequence: singular (two axes aligned, the mass matrix loses rank) when the middle angle reaches ±90°.
 # Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
 # bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
+_MAX_REST_TWIST = math.radians(20.0)
+"""Largest rest twist (middle Euler angle) of a turned root left unrolled: ≥ 70° from the lock (:func:`_root_roll`)."""
 _JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
 
 
@@ -67,16 +72,22 @@ def _min_rotation(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.eye(3) + math.sin(angle) * kx + (1.0 - math.cos(angle)) * kx @ kx
 
 
-def chain_frames(points: np.ndarray) -> np.ndarray:
-    """Twist-free material frames of a polyline's edges, ``(n_edges, 3, 3)``, columns = (tangent, d1, d2)."""
+def chain_frames(points: np.ndarray, roll: float = 0.0) -> np.ndarray:
+    """Twist-free material frames of a polyline's edges, ``(n_edges, 3, 3)``, columns = (tangent, d1, d2).
+
+    The first frame's ``d1`` is horizontal (or along world x for a near-vertical first edge), turned by ``roll``
+    [rad] about the first tangent; the others follow by parallel transport.
+    """
     seg = np.diff(np.asarray(points, dtype=float), axis=0)
     tang = seg / np.linalg.norm(seg, axis=1)[:, None]
     t0 = tang[0]
     helper = np.array([0.0, 0.0, 1.0]) if abs(t0[2]) < 0.9 else np.array([1.0, 0.0, 0.0])
     d1 = np.cross(helper, t0)
     d1 /= np.linalg.norm(d1)
+    d2 = np.cross(t0, d1)
+    c, s = math.cos(roll), math.sin(roll)
     frames = np.empty((len(tang), 3, 3))
-    frames[0] = np.column_stack([t0, d1, np.cross(t0, d1)])
+    frames[0] = np.column_stack([t0, c * d1 + s * d2, c * d2 - s * d1])
     for i in range(1, len(tang)):
         frames[i] = _min_rotation(tang[i - 1], tang[i]) @ frames[i - 1]
     return frames
@@ -92,6 +103,34 @@ def _root_rest_angles(frame: np.ndarray, turn: float) -> tuple[float, float, flo
     local = frame.T @ rz @ frame
     y, x, z = Rotation.from_matrix(local).as_euler("YXZ")
     return (float(y), float(x), float(z))
+
+
+def _root_roll(frame: np.ndarray, turn: float) -> float:
+    """Roll [rad] of the root frame about its tangent that keeps the stress-free root far from gimbal lock.
+
+    The root's rest angles are an Euler decomposition of the rest turn; the hinges are singular where the middle
+    (twist) angle reaches ±90°. With ``d1`` horizontal, the twist at rest is 90° minus the first edge's tilt from
+    the vertical (47° for wavy), so a brush that twisted the root by another 45–55° locked it: held_out_wavy
+    diverged with MuJoCo's singular-inertia warning at the root dof in 7 of 12 episodes (``docs/detangling.md``).
+    Where the unrolled rest twist exceeds :data:`_MAX_REST_TWIST`, the roll that minimizes it is taken (wavy 47° →
+    30°, held_out_wavy 36° → 15°, loose_curl 28° → 5°); elsewhere the frame stays as it is. The roll changes which
+    Euler decomposition the root springs use, not the rest shape; their quadratic energy agrees with a rotational
+    spring only near the reference, so frames that were far from the lock are left alone.
+    """
+    if turn == 0.0 or abs(_root_rest_angles(frame, turn)[1]) <= _MAX_REST_TWIST:
+        return 0.0
+
+    def badness(roll: float) -> float:
+        y, x, z = _root_rest_angles(frame @ _roll_matrix(roll), turn)
+        return abs(x) + 1e-3 * max(abs(y), abs(z))  # the middle angle first, then the smaller bends
+
+    rolls = np.linspace(0.0, math.pi, 181)
+    return float(rolls[int(np.argmin([badness(r) for r in rolls]))])
+
+
+def _roll_matrix(roll: float) -> np.ndarray:
+    c, s = math.cos(roll), math.sin(roll)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def _quat(mat: np.ndarray) -> list[float]:
@@ -130,10 +169,11 @@ def add_chain_rod(
     pts = rod.points
     lengths = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     frames = chain_frames(pts)
+    if clamped := rod.clamp == "start":
+        frames = chain_frames(pts, roll=_root_roll(frames[0], rod.root_rest_turn))
     ei, gj = rod.bending_stiffness, rod.twisting_stiffness
     r = rod.radius
     friction = [rod.friction, *FRICTION_TORSION_ROLL]
-    clamped = rod.clamp == "start"
     body = pbody
     root = None
     for k, ell in enumerate(lengths):
