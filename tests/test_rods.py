@@ -406,18 +406,18 @@ def _root_twist_rest_deg(points: np.ndarray, turn: float) -> float:
     return math.degrees(float(model.qpos_spring[model.jnt_qposadr[model.joint("r_0_twist").id]]))
 
 
-@pytest.mark.parametrize("tilt_deg", [43.0, 54.0, 62.0, 72.0, 79.0])
+@pytest.mark.parametrize("tilt_deg", [43.0, 54.0, 62.0, 68.0, 72.0, 79.0])
 def test_turned_root_rests_far_from_gimbal_lock(tilt_deg):
     """The three root hinges are an Euler sequence, singular where the middle (twist) angle reaches ±90°. A root
-    whose quarter-turned rest shape would twist it by more than 20° gets its frame rolled: 47° → ≤ 31° for a first
+    whose quarter-turned rest shape would twist it by more than 25° gets its frame rolled: 47° → ≤ 31° for a first
     edge tilted 43° from the vertical (wavy), 36° → ≤ 16° at 54° (held_out_wavy, which locked under the comb:
-    docs/detangling.md); from 72° on (curly and curlier) the frame stays unrolled."""
+    docs/detangling.md); from 68° on (held_out_curly, curly and curlier) the frame stays unrolled."""
     a = math.radians(tilt_deg)
     t = np.linspace(0.0, 1.0, 9)
     pts = np.column_stack([0.03 * t * math.sin(a), 0.01 * t**2, -0.03 * t * math.cos(a)])
     twist = abs(_root_twist_rest_deg(pts, math.pi / 2))
     unrolled = 90.0 - math.degrees(math.atan2(math.hypot(*(pts[1] - pts[0])[:2]), -(pts[1] - pts[0])[2]))
-    if unrolled <= 20.0:
+    if unrolled <= 25.0:
         assert twist == pytest.approx(unrolled, abs=0.5)
     else:
         assert twist <= (31.0 if tilt_deg < 50 else 16.0), (twist, unrolled)
