@@ -2,9 +2,10 @@
 
     python scripts/probe_detangle.py NAME '{"wig": {"base": "curly", "cohesion": 12.5, ...WigConfig fields},
         "brush": "comb" or {...BrushConfig fields}, "scene": {...SceneConfig fields},
-        "strokes": 6, "seed": 0, "b_l": 1.0, "y": 0.0 or [y1, y2, ...]}'
+        "strokes": 6, "seed": 0, "b_l": 1.0, "y": 0.0 or [y1, y2, ...], "iterations": 50}'
 
-"y": the brush's sideways offset [m], or offsets that the strokes cycle through.
+"y": the brush's sideways offset [m], or offsets that the strokes cycle through. "iterations": the contact solver's
+iteration cap (default ``rods.CHAIN_SOLVER_ITERATIONS``).
 
 Writes runs/probe/NAME.jsonl, one line per stroke (hairbrush_env.studies.repeated_strokes rows).
 """
@@ -31,6 +32,8 @@ brush = b if isinstance(b, str) else BrushConfig(**b)  # a preset name (the scen
 sc = SceneConfig(wig=wig, brush=brush, **cfg.get("scene", {}))
 t0 = time.process_time()
 sim = BrushingSim(sc)
+if cfg.get("iterations"):
+    sim.model.opt.iterations = int(cfg["iterations"])
 print(
     f"{name}: edges {wig.n_edges} turns {wig.turns:.2f} hang {wig.hanging_length:.3f}",
     f"spacing {sim.layout.spacing:.4f} extent {sim.layout.extent} Lk {sim.layout.n_links:.2f}",
