@@ -55,9 +55,9 @@ _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
 # Euler-angle sequence: singular (two axes aligned, the mass matrix loses rank) when the middle angle reaches ±90°.
 # Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
 # bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
+_JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
 _MAX_REST_TWIST = math.radians(25.0)
 """Largest rest twist (middle Euler angle) of a turned root left unrolled: ≥ 65° from the lock (:func:`_root_roll`)."""
-_JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
 
 
 def _min_rotation(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -110,13 +110,11 @@ def _root_roll(frame: np.ndarray, turn: float) -> float:
 
     The root's rest angles are an Euler decomposition of the rest turn; the hinges are singular where the middle
     (twist) angle reaches ±90°. With ``d1`` horizontal, the twist at rest is 90° minus the first edge's tilt from
-    the vertical (47° for wavy), so a brush that twisted the root by another 45–55° locked it: held_out_wavy
-    diverged with MuJoCo's singular-inertia warning at the root dof in 7 of 12 episodes (``docs/detangling.md``).
-    Where the unrolled rest twist exceeds :data:`_MAX_REST_TWIST`, the roll that minimizes it is taken (wavy 47° →
-    30°, held_out_wavy 36° → 15°, loose_curl 28° → 5°); elsewhere (curly 18°, held_out_curly 22°) the frame stays as
-    it is. The roll changes which Euler decomposition the root springs use, not the rest shape; their quadratic
-    energy agrees with a rotational spring only near the reference, so frames that were far from the lock are left
-    alone.
+    the vertical, so wigs of low curliness rest closest to the lock, and a comb twisted held_out_wavy's root (rest
+    −37°) past it (``docs/detangling.md``). Where the unrolled rest twist exceeds :data:`_MAX_REST_TWIST`, the roll
+    that minimizes it is taken; elsewhere the frame stays as it is. The roll changes which Euler decomposition the
+    root springs use, not the rest shape; their quadratic energy agrees with a rotational spring only near the
+    reference, so frames that were far from the lock are left alone.
     """
     if turn == 0.0 or abs(_root_rest_angles(frame, turn)[1]) <= _MAX_REST_TWIST:
         return 0.0
