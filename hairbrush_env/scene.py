@@ -62,7 +62,7 @@ PAIN_THRESHOLD = PAIN_THRESHOLD_N
 
 _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
 _RETRACT_GAP = 0.015  # tine tips this far in front of the hair before the brush moves beside it
-_QUIET_SECONDS = 0.3  # end of the pre-brushed settle at the contact step (BrushingSim.settled_state)
+_QUIET_SECONDS = 0.3  # end of the pre-brushed settle, at the hair's own damping (BrushingSim.settled_state)
 _STEADY_SECONDS, _STEADY_DAMPING = 1.0, 30.0  # hand-steadied rest after the shake (BrushingSim.settled_state)
 # Free-space stepping (BrushingSim._needs_fine_step): the brush's box (BrushingSim.tool_box) and the box
 # of the hair's centerlines at least the contact reach (wisp radius + both margins, which MuJoCo adds) plus this far
@@ -307,9 +307,20 @@ class BrushingSim:
         """The pre-brushed state for ``seed`` (from the cache, or shaken now and cached)."""
         state = self.cache.get(self.wig, seed, self.model_hash)
         if state is None:
-            self.use_step(contact=False)
+            # The whole preparation runs at the contact step. At the 10 ms free step the prestressed pairs passed
+            # through each other as soon as they were released (seed 0: 24 crossings in curly's shake, 38 in
+            # coily's, the first at t = 0.05 s), and the pre-brushed wigs had lost a third (curly) to two thirds
+            # (coily) of their link that way; at 1 ms there is none (tests/test_scene.py, preparation test).
+            self.use_step(contact=True)
             hairmod.set_state(self.model, self.data, self._base_state)
-            hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies)
+
+            def observe(model: mujoco.MjModel, data: mujoco.MjData) -> None:
+                for fn in self._step_observers:
+                    fn(self)
+
+            hairmod.shake(
+                self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies, on_step=observe
+            )
             # A curtain one group deep swings as a pendulum after the shake (straight: ±12 cm along x, decaying to
             # ±5 cm only after 3.5 s under the hair's own damping), while a real wig is brushed once it hangs still:
             # let it come to rest under a heavy damping of the hair joints, as a hand steadying the wig would.
@@ -319,14 +330,12 @@ class BrushingSim:
             try:
                 for _ in range(round(_STEADY_SECONDS / self.model.opt.timestep)):
                     mujoco.mj_step(self.model, self.data)
+                    observe(self.model, self.data)
             finally:
                 self.model.dof_damping[dofs] = damping
-            # Prestressed curls (WigConfig.rest_splay) pressed against each other chatter at the 10 ms step (a
-            # contact limit cycle: joint speeds ~1 rad/s, vertices ~10 mm/s, however long the settle); at the
-            # contact step they come to rest within 0.3 s.
-            self.use_step(contact=True)
             for _ in range(round(_QUIET_SECONDS / self.model.opt.timestep)):
                 mujoco.mj_step(self.model, self.data)
+                observe(self.model, self.data)
             self.use_step(contact=False)
             state = hairmod.get_state(self.model, self.data)
             self.cache.put(self.wig, seed, self.model_hash, state)
@@ -357,9 +366,10 @@ class BrushingSim:
         self._observers.remove(fn)
 
     def add_step_observer(self, fn) -> None:
-        """Call ``fn(sim)`` after every physics step of strokes and velocity control (e.g. a pass-through check:
-        strands cross within one 1 ms step, which 10 Hz samples miss). Positions seen are those MuJoCo computed at
-        the start of the step, so consecutive calls see consecutive states."""
+        """Call ``fn(sim)`` after every physics step of strokes, velocity control and a pre-brushed preparation that
+        is not cached yet (e.g. a pass-through check: strands cross within one 1 ms step, which 10 Hz samples miss).
+        Positions seen are those MuJoCo computed at the start of the step, so consecutive calls see consecutive
+        states."""
         self._step_observers.append(fn)
 
     def remove_step_observer(self, fn) -> None:

@@ -41,7 +41,7 @@ BRUSH_TCP = "arm/brush/brush_tcp"
 HEAD_POS = np.array([0.62, 0.0, 0.0])  # recommended head placement (assets/head/head.xml)
 WORKSPACE_Z = (0.55, 0.93)  # arm README: brushing workspace
 # The arm holds the brush level below its brushing workspace too (IK residual < 0.01 mm down to 0.35 m), so a pull may
-# go on below 0.55 m (SceneConfig.pull_floor_z).
+# go on below 0.55 m (SceneConfig.pull_floor_z, 0.40 by default).
 _PULL_FLOOR_MIN = 0.35
 SCENE_TINE_PREFIX = "arm/brush/" + TINE_PREFIX
 """Name prefix of the brush's tine geoms in the scene (:data:`hairbrush_env.brush.TINE_PREFIX` under ``arm/brush/``)."""
@@ -100,12 +100,13 @@ class SceneConfig:
         Any dof speed above this [m/s or rad/s] flags divergence (rod twist hinges excluded).
     pull_floor_z : float or None
         A float [m] (≥ 0.35, where the arm still holds the brush level): the pull goes on until the brush is below
-        every strand, however far it dragged the curls, down to this height. Default 0.55, 7 cm below the rest free
-        ends (``free_end_z``): a jammed brush straightens the curls and drags them below their rest ends, and a pull
-        that stops at them leaves the curls on the brush, which then withdraws sideways through them. Pulling on
-        further (0.40) removed no more link, but the strands, taut between the roots and a tine, were squeezed to
-        0.19–0.45 of the sum of radii. ``None``: a pull ends 1 cm below the rest free ends, or earlier once the whole
-        brush is below every strand (the wave-1 stroke, kept for benchmarks; ``docs/detangling.md``).
+        every strand, however far it dragged the curls, down to this height. Default 0.40, 22 cm below the rest free
+        ends (``free_end_z``) and about a coily strand's arc length below its roots: a curl hooked on a tine
+        stretches rather than slides, and a pull that stops before the strand is pulled straight withdraws sideways
+        with the curls still on the tines, so their link springs back (ending at 0.55 m left 11–14 of coily's 15
+        pairs wound after six strokes). The pull stops earlier once the whole brush is below every strand, so the
+        floor costs nothing where the hair lets go. ``None``: a pull ends 1 cm below the rest free ends, or earlier
+        once the whole brush is below every strand (the wave-1 stroke, kept for benchmarks; ``docs/detangling.md``).
     scalp_clearance : float
         Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 5 mm (default):
         with the comb's plate the tines enter 8 mm below the roots; link above the highest tine is never combed
@@ -134,7 +135,7 @@ class SceneConfig:
     hair_hair: bool = True
     max_speed: float = 50.0
     scalp_clearance: float = 0.005
-    pull_floor_z: float | None = 0.55
+    pull_floor_z: float | None = 0.40
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown

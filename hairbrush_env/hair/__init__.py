@@ -53,6 +53,17 @@ The 1 ms contact step that keeps strands from passing through each other sets th
 (R = 12 mm) so that they hang 6–8 cm and a stroke from 8 mm below the roots covers most of them (a wisp turn stands
 for many real curl turns).
 
+Mass scaling (``WigConfig.mass_scale``, default :data:`MASS_SCALE` = 10): a stroke is quasi-static (Fig. 3.8: a 4×
+change of speed moves the maximum force by a few per cent), so the strands' inertia can be raised without changing
+the forces that matter, as finite-element codes do for quasi-static problems. It matters for contact: a MuJoCo soft
+contact of time constant ``τ`` acts like a spring of stiffness ``~ m_eff / τ²`` (``m_eff`` the effective mass of the
+contact), and a wisp segment weighs ~25 mg, ``m/τ² ≈ 25 N/m`` at the 1 ms step (``τ`` cannot go below twice the
+step). Strands taut between the roots and a tine sank into each other to 0.04 of the sum of radii; ten times the
+inertia keeps them ≥ 0.86 apart at the same step and cost. MuJoCo's ``gravcomp`` takes the extra weight off again,
+so strands hang and bend as ``density`` and ``young`` say (the static validations are unchanged), and the shake of
+the preparation forces the real mass. A 2 ms step with ``s = 10`` halves the CPU but diverged in 2 of 6 series
+(``docs/detangling.md``, *Mass scaling*).
+
 Prestress (``WigConfig.rest_splay``): built as coaxial helices with stress-free rest curves, the entwined state is
 the *only* stress-free one (a helix is fixed by its root frame), so combed-apart strands wind themselves back up.
 Turning each strand's stress-free shape about the vertical through its root moves its own helix axis off the group's,
@@ -79,6 +90,7 @@ from .config import (
     HAIR_RGBA,
     HELD_OUT_SEEDS,
     HELD_OUT_WIGS,
+    MASS_SCALE,
     PRESETS,
     REAL_HAIR_RADIUS,
     REAL_HAIR_YOUNG,
@@ -109,6 +121,7 @@ __all__ = [
     "HAIR_RGBA",
     "HELD_OUT_SEEDS",
     "HELD_OUT_WIGS",
+    "MASS_SCALE",
     "PRESETS",
     "REAL_HAIR_RADIUS",
     "REAL_HAIR_YOUNG",

@@ -75,6 +75,7 @@ def add_wig(
                 radius=cfg.strand_radius,
                 young=cfg.young_modulus,
                 density=cfg.density,
+                mass_scale=cfg.mass_scale if cfg.rod_kind == "chain" else 1.0,
                 damping=cfg.damping,
                 friction=cfg.friction,
                 rgba=cfg.rgba,

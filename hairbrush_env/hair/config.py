@@ -19,6 +19,7 @@ __all__ = [
     "HAIR_RGBA",
     "HELD_OUT_SEEDS",
     "HELD_OUT_WIGS",
+    "MASS_SCALE",
     "PRESETS",
     "REAL_HAIR_RADIUS",
     "REAL_HAIR_YOUNG",
@@ -51,6 +52,11 @@ WISP_COHESION = 12.5
 (``E_w = 125 MPa`` at ``r_w = 0.8 mm``): the comb's first full stroke through the curled presets reads 1.5–6.6 N
 (means over seeds) and repeated strokes comb most of curly's link out; stiffer wisps read more but comb out less
 (``docs/detangling.md``)."""
+
+MASS_SCALE = 10.0
+"""Default inertia multiplier of chain strands (:attr:`WigConfig.mass_scale`; *Mass scaling* in
+:mod:`hairbrush_env.hair`). 10 keeps taut strands ≥ 0.86 of the sum of radii apart through six full strokes of the deep
+pull on curly and coily (seeds 0–2) at the 1 ms step, where the real mass let them sink to 0.04."""
 
 
 def wisp_young(
@@ -146,6 +152,11 @@ class WigConfig:
         Rows of groups along the brush's depth axis (x); the columns follow. ``None``: about ``√(n_groups/1.5)``
         (wider than deep). Default 1: a curtain one group deep, in which no tine collects strands of several groups
         along its length (deeper wigs let the brush wind neighbouring groups together).
+    mass_scale : float
+        Inertia multiplier ``s >= 1`` of chain strands (:attr:`hairbrush_env.rods.RodSpec.mass_scale`; flex wigs
+        ignore it): ``s`` times the mass and rotational inertia at the same weight, so that taut strands do not sink
+        into each other (*Mass scaling* in :mod:`hairbrush_env.hair`). The preparation's shake forces the real mass
+        (``density``), not the scaled one.
     """
 
     name: str = "custom"
@@ -173,6 +184,7 @@ class WigConfig:
     rod_kind: rods.RodKind = "chain"
     rest_splay: float = math.pi / 2
     group_rows: int | None = 1
+    mass_scale: float = MASS_SCALE
 
     def __post_init__(self) -> None:
         _require(
@@ -201,6 +213,9 @@ class WigConfig:
         if self.young is not None:
             _require(_finite(self.young) and self.young > 0.0, "young", "must be > 0 or None", self.young)
         _require(self.density > 0.0, "density", "must be > 0", self.density)
+        _require(
+            _finite(self.mass_scale) and self.mass_scale >= 1.0, "mass_scale", "must be >= 1", self.mass_scale
+        )
         for f in ("damping", "friction", "root_gap", "shake_seconds", "settle_seconds", "shake_accel"):
             _require(getattr(self, f) >= 0.0, f, "must be >= 0", getattr(self, f))
         _require(self.min_spacing > 0.0, "min_spacing", "must be > 0", self.min_spacing)
@@ -384,6 +399,7 @@ def wave1_wig(wig: str | WigConfig) -> WigConfig:
         min_spacing=6e-3,
         group_rows=None,
         rest_splay=0.0,
+        mass_scale=1.0,
     )
 
 

@@ -56,7 +56,8 @@ def shake(
     n_shake = round(wig.shake_seconds / dt)
     n_settle = round(wig.settle_seconds / dt)
     acc = shake_acceleration(wig, seed, np.arange(n_shake) * dt)
-    mass = model.body_mass[strand_bodies][:, None]
+    # the weight mass: a mass-scaled strand (WigConfig.mass_scale) is shaken as hard as the real one
+    mass = (model.body_mass * (1.0 - model.body_gravcomp))[strand_bodies][:, None]
     for k in range(n_shake):
         data.xfrc_applied[strand_bodies, :3] = -mass * acc[k][None, :]
         mujoco.mj_step(model, data)

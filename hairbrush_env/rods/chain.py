@@ -56,6 +56,11 @@ _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
 # Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
 # bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
 _JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
+_ROOT_ARMATURE = 0.1
+"""Armature of the root hinges, as a fraction of the root segment's moment of inertia about its clamp. The three root
+hinges are an Euler sequence: where the twist reaches ±90° two of their axes align and the joint-space inertia matrix
+turns singular (MuJoCo's ``mjWARN_INERTIA``; a strand dragged by the comb took its root there, docs/detangling.md).
+The armature keeps it regular; statics do not see it."""
 _MAX_REST_TWIST = math.radians(25.0)
 """Largest rest twist (middle Euler angle) of a turned root left unrolled: ≥ 65° from the lock (:func:`_root_roll`)."""
 
@@ -184,7 +189,13 @@ def add_chain_rod(
             body = body.add_body(
                 name=f"{rod.name}_{k}", pos=[float(lengths[k - 1]), 0.0, 0.0], quat=_quat(rel)
             )
-        mass = rod.linear_density * float(ell)
+        mass = rod.linear_density * float(ell) * rod.mass_scale
+        if (
+            k == 0
+        ):  # keeps the joint-space inertia regular where the root's Euler hinges lock (_ROOT_ARMATURE)
+            root_armature = _ROOT_ARMATURE * mass * float(ell) ** 2 / 3.0
+        if rod.mass_scale != 1.0:
+            body.gravcomp = 1.0 - 1.0 / rod.mass_scale
         body.explicitinertial = True
         body.mass = mass
         body.ipos = [0.5 * float(ell), 0.0, 0.0]
@@ -205,7 +216,9 @@ def add_chain_rod(
                     type=mujoco.mjtJoint.mjJNT_HINGE,
                     axis=list(axis),
                     stiffness=[stiffness, 0.0, 0.0],
-                    damping=[rod.damping * stiffness, 0.0, 0.0],
+                    # ×√s keeps every mode's damping ratio under mass scaling (c = 2ζ√(k m))
+                    damping=[rod.damping * stiffness * math.sqrt(rod.mass_scale), 0.0, 0.0],
+                    armature=root_armature if k == 0 else 0.0,
                 )
         geom = body.add_geom(
             name=f"{rod.name}_{k}",

@@ -204,6 +204,7 @@ class RodSpec:
     edge_solref: tuple[float, float] = EDGE_SOLREF
     kind: RodKind = "chain"
     root_rest_turn: float = 0.0
+    mass_scale: float = 1.0
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name:
@@ -236,6 +237,10 @@ class RodSpec:
         _check_finite("radius", self.radius, positive=True)
         _check_finite("young", self.young, positive=True)
         _check_finite("density", self.density, positive=True)
+        if not (math.isfinite(self.mass_scale) and self.mass_scale >= 1.0):
+            raise ValueError(f"RodSpec.mass_scale must be a finite number >= 1, got {self.mass_scale!r}")
+        if self.mass_scale != 1.0 and self.kind != "chain":
+            raise ValueError("RodSpec.mass_scale needs a chain rod (kind='chain')")
         _check_finite("damping", self.damping, nonneg=True)
         _check_finite("friction", self.friction, nonneg=True)
         _check_finite("margin", self.margin, nonneg=True)

