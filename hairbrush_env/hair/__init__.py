@@ -74,7 +74,9 @@ Pre-brushed state (thesis §3.4: wigs are turned upside down and shaken for 10�
 :func:`shake` moves the head in the hair's frame: shaking the scalp with acceleration ``a(t)`` is *exactly*
 equivalent, in the head frame, to a uniform inertial body force ``−m a(t)`` on every hair vertex, applied through
 ``xfrc_applied``. ``a(t)`` is a seeded sum of sinusoids (mostly horizontal, with vertical components that
-briefly unload gravity), followed by a settling phase. The result depends only on (wig, seed, model), so it is
+briefly unload gravity), followed by a settling phase, all at the 1 ms contact step
+(:meth:`hairbrush_env.scene.BrushingSim.settled_state`: at the 10 ms step the prestressed pairs passed through each
+other and lost a third to two thirds of their link). The result depends only on (wig, seed, model), so it is
 cached (:class:`StateCache`, in memory and optionally on disk) as the full MuJoCo state
 (``mjSTATE_INTEGRATION``, which includes ``mjSTATE_PLASTIC``, the rods' reference frames).
 

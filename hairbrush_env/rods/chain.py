@@ -14,7 +14,8 @@ parallel-transported (twist-free) frames, so every spring is relaxed in the give
 root whose stress-free shape is turned (``RodSpec.root_rest_turn``) has its root springs referenced to the turned
 frame, and its frames are rolled about the tangent so that this reference stays far from the hinges' gimbal lock
 (:func:`_root_roll`).
-Damping is stiffness-proportional (``damping · k``, in seconds like the flex's Rayleigh damping); no armature.
+Damping is stiffness-proportional (``damping · k``, in seconds like the flex's Rayleigh damping); armature
+:data:`_ARMATURE`.
 
 Why three hinges: a ball joint's one isotropic stiffness makes torsion ``1 + ν`` too stiff, and two bending hinges
 alone make a coil rigid in torsion; with three, a helical spring converges to ``G d⁴ / (8 D³ N)`` several times faster
@@ -56,11 +57,13 @@ _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
 # Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
 # bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
 _JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
-_ROOT_ARMATURE = 0.1
-"""Armature of the root hinges, as a fraction of the root segment's moment of inertia about its clamp. The three root
-hinges are an Euler sequence: where the twist reaches ±90° two of their axes align and the joint-space inertia matrix
-turns singular (MuJoCo's ``mjWARN_INERTIA``; a strand dragged by the comb took its root there, docs/detangling.md).
-The armature keeps it regular; statics do not see it."""
+_ARMATURE = 0.1
+"""Armature of every vertex's three hinges, as a fraction of the segment's moment of inertia about the vertex
+(``m ℓ²/3``). The hinges are an Euler sequence: where a twist reaches ±90° two of their axes align and the joint-space
+inertia matrix turns singular (MuJoCo's ``mjWARN_INERTIA``). Strands dragged by the comb took roots and interior
+vertices there (coily seed 1, vertex 17, second full stroke). The armature keeps the matrix regular, and it slows the
+twist mode (axial inertia ``m r²/2``, a ~1 ms period at the contact step) to one the step resolves, as discrete elastic
+rods treat twist as quasi-static; statics do not see it."""
 _MAX_REST_TWIST = math.radians(25.0)
 """Largest rest twist (middle Euler angle) of a turned root left unrolled: ≥ 65° from the lock (:func:`_root_roll`)."""
 
@@ -190,10 +193,7 @@ def add_chain_rod(
                 name=f"{rod.name}_{k}", pos=[float(lengths[k - 1]), 0.0, 0.0], quat=_quat(rel)
             )
         mass = rod.linear_density * float(ell) * rod.mass_scale
-        if (
-            k == 0
-        ):  # keeps the joint-space inertia regular where the root's Euler hinges lock (_ROOT_ARMATURE)
-            root_armature = _ROOT_ARMATURE * mass * float(ell) ** 2 / 3.0
+        armature = _ARMATURE * mass * float(ell) ** 2 / 3.0  # see _ARMATURE
         if rod.mass_scale != 1.0:
             body.gravcomp = 1.0 - 1.0 / rod.mass_scale
         body.explicitinertial = True
@@ -218,7 +218,7 @@ def add_chain_rod(
                     stiffness=[stiffness, 0.0, 0.0],
                     # ×√s keeps every mode's damping ratio under mass scaling (c = 2ζ√(k m))
                     damping=[rod.damping * stiffness * math.sqrt(rod.mass_scale), 0.0, 0.0],
-                    armature=root_armature if k == 0 else 0.0,
+                    armature=armature,
                 )
         geom = body.add_geom(
             name=f"{rod.name}_{k}",
