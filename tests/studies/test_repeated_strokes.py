@@ -23,8 +23,9 @@ def test_rows_of_a_short_run():
     seen = []
     rows = repeated_strokes(sim, seed=0, n_strokes=2, on_stroke=seen.append)
     assert rows == seen and [r["stroke"] for r in rows] == [0, 1, 2]
-    # the prestressed pairs shed part of their built link in the shake, never gain (measured 3.38 of 4.21)
-    assert 0.5 * sim.layout.n_links < rows[0]["entanglement"] < sim.layout.n_links + 0.5
+    # no strand passes through another in the shake, so the pairs keep their built link; the prestressed pairs wind
+    # a little beyond it (measured 4.73 of 4.21 built)
+    assert 0.9 * sim.layout.n_links < rows[0]["entanglement"] < 1.2 * sim.layout.n_links
     for r in rows[1:]:
         assert r["max_force"] > 0 and not r["aborted"] and not r["diverged"] and r["cpu_s"] > 0
         assert r["crossings"] == 0 and r["min_hair_hair"] > 0.5 and not math.isnan(r["min_hair_bristle"])
@@ -41,20 +42,20 @@ def test_rows_of_a_short_run():
 
 
 @pytest.fixture(scope="module")
-def curly_three_strokes() -> list[dict]:
-    return repeated_strokes(BrushingSim(SceneConfig(wig="curly")), seed=0, n_strokes=3)
+def curly_first_stroke() -> tuple[BrushingSim, list[dict]]:
+    sim = BrushingSim(SceneConfig(wig="curly"))
+    return sim, repeated_strokes(sim, seed=0, n_strokes=1)
 
 
-def test_default_curly_combs_out(curly_three_strokes):
-    """Fig. 3.6(i) in reduced form on the default wig and comb (curly, seed 0, three full strokes without abort):
-    the force falls from the first stroke, at most 40 % of the entanglement is left after three strokes (measured
-    0.27; six strokes: ``test_fig_3_6_full_strokes_detangle``), no strand crosses another and none comes closer
-    than half the sum of radii to another at any physics step (measured ≥ 0.78)."""
-    rows = curly_three_strokes
-    forces = [r["max_force"] for r in rows[1:]]
-    assert forces[-1] < forces[0]
-    assert rows[-1]["entanglement"] <= 0.4 * rows[0]["entanglement"]
-    assert all(r["crossings"] == 0 and r["min_hair_hair"] >= 0.5 for r in rows[1:])
+def test_default_curly_first_stroke_combs_out_half(curly_first_stroke):
+    """Fig. 3.6(i), first stroke, on the default wig and comb (curly, seed 0, a full stroke without abort): the
+    pre-brushed wig holds all its built link (45.9 against 41.0 built; the prestressed triples wind beyond it), one
+    stroke combs out about half (measured 0.52 left) through the free ends: no strand crosses another, and none comes
+    closer than half the sum of radii to another at any physics step (measured 1.18)."""
+    sim, rows = curly_first_stroke
+    assert rows[0]["entanglement"] > 0.95 * sim.layout.n_links
+    assert rows[1]["entanglement"] <= 0.67 * rows[0]["entanglement"]
+    assert rows[1]["crossings"] == 0 and rows[1]["min_hair_hair"] >= 0.5
 
 
 def _six_strokes(wig: str, seed: int) -> list[dict]:
@@ -66,22 +67,31 @@ def curly_six_strokes() -> dict[int, list[dict]]:
     return {seed: _six_strokes("curly", seed) for seed in (0, 1, 2)}
 
 
+_NOT_COMBED_OUT = (
+    "with the pre-brushed wigs holding their full link (docs/detangling.md, Correction), six full strokes leave "
+    "0.59 / 0.57 / 0.68 of curly's entanglement (seeds 0-2; every stroke after the first removes none, 13-15 of "
+    "the 15 pairs stay wound) and the force peaks at the second stroke (8.3-10.1 N after 5.6-6.2 N)"
+)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=_NOT_COMBED_OUT)
 def test_fig_3_6_full_strokes_detangle(curly_six_strokes, seed: int):
     """Fig. 3.6(i) on curly, seeds 0–2: six full strokes without abort; every later stroke reads less than the first,
-    at most 30 % of the entanglement is left (measured 0.23 / 0.27 / 0.20; ``hairbrush repeat --wigs curly,coily
-    --seeds 3 --out runs/repeat/fig36``) and no strand crosses another."""
+    at most 30 % of the entanglement is left (``hairbrush repeat --wigs curly --seeds 3 --out ...``) and no strand
+    crosses another."""
     rows = curly_six_strokes[seed]
+    assert all(r["crossings"] == 0 for r in rows[1:])
     forces = [r["max_force"] for r in rows[1:]]
     assert max(forces[1:]) < forces[0]
     assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-    assert all(r["crossings"] == 0 for r in rows[1:])
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, raises=AssertionError, reason=_NOT_COMBED_OUT)
 def test_fig_3_6_force_plateaus_within_six_strokes(curly_six_strokes):
-    """Eq. 3.4 (|Δf_max| < 0.4 N) is met within six full strokes on every seed (measured at strokes 5, 5 and 6)."""
+    """Eq. 3.4 (|Δf_max| < 0.4 N) is met within six full strokes on every seed (measured: on none)."""
     assert all(
         plateau_stroke([r["max_force"] for r in rows[1:]]) is not None for rows in curly_six_strokes.values()
     )
@@ -90,9 +100,9 @@ def test_fig_3_6_force_plateaus_within_six_strokes(curly_six_strokes):
 @pytest.mark.slow
 @pytest.mark.xfail(
     strict=True,
-    reason="coily does not comb out: after six full strokes seeds 0 / 1 / 2 hold 1.18 / 1.12 / 1.75 of their "
-    "entanglement (seed 0: 19.5 -> 23.0, the force flat at 3.6-4.9 N; link made between neighbouring groups grows); "
-    "docs/detangling.md",
+    raises=AssertionError,
+    reason="coily does not comb out to 30 %: after six full strokes seed 0 holds 0.46 of its entanglement (0.41 after "
+    "the first stroke, then no more leaves; 15 of 15 pairs still wound); docs/detangling.md",
 )
 def test_fig_3_6_coily_detangles():
     rows = _six_strokes("coily", 0)
