@@ -28,8 +28,8 @@ scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double
 (``R/r = 15``, one wisp turn standing for many real turns, few contacts per turn) jams far less than a real curl, so
 ``κ ≫ 1``; forces grow about linearly in ``κ``. The wave-1 wig used ``κ = 50`` (:data:`WAVE1_COHESION`) under a soft
 paddle brush that pushed whole groups aside. Under the comb, whose tines split every pair, ``κ = 12.5`` puts the
-first full stroke through the curled presets at 1.5–6.6 N (means over seeds 0–2; curly's single strokes up to 8.8 N),
-below the thesis's pain threshold ``F_T = 10 N``. Stiffer
+first full stroke through the curled presets at 1.7–11.1 N (means over seeds 0–2; coily's above the thesis's pain
+threshold ``F_T = 10 N``, ``docs/wigs.md``). Stiffer
 wisps read more (``κ = 16``: 7–11 N; 20: 8–10.5 N) but comb out less (curly, seed 0: 0.46 of the entanglement left
 after six strokes at ``κ = 16``) and are squeezed into each other more (``docs/detangling.md``).
 
