@@ -61,8 +61,9 @@ contact), and a wisp segment weighs ~25 mg, ``m/τ² ≈ 25 N/m`` at the 1 ms st
 step). Strands taut between the roots and a tine sank into each other to 0.04 of the sum of radii; ten times the
 inertia keeps them ≥ 0.86 apart at the same step and cost. MuJoCo's ``gravcomp`` takes the extra weight off again,
 so strands hang and bend as ``density`` and ``young`` say (the static validations are unchanged), and the shake of
-the preparation forces the real mass. A 2 ms step with ``s = 10`` halves the CPU but diverged in 2 of 6 series
-(``docs/detangling.md``, *Mass scaling*).
+the preparation forces the real mass. A 2 ms step with ``s = 10`` halves the CPU but diverged in 2 of 6 series.
+Caveat: at 0.05–0.2 m/s the mass-scaled stroke is *not* quasi-static (curly, b_l 0.67: +58 % force for a 4× speed,
+against +23 % with the real mass), so its forces and combing carry inertia (``docs/detangling.md``, *Fig. 3.8*).
 
 Prestress (``WigConfig.rest_splay``): built as coaxial helices with stress-free rest curves, the entwined state is
 the *only* stress-free one (a helix is fixed by its root frame), so combed-apart strands wind themselves back up.

@@ -1,0 +1,32 @@
+"""Exploration probe: max force of one stroke at several pull speeds, for a given strand mass scale (Fig. 3.8).
+
+    python scripts/probe_speed.py WIG MASS_SCALE B_L SPEED[,SPEED...] [SEEDS]     # e.g. curly 1 0.67 0.05,0.2 3
+
+One stroke per (seed, speed) from the pre-brushed wig, no abort; prints the max force per seed and the mean per speed
+(docs/detangling.md, *Correction*: is the mass-scaled stroke still quasi-static?).
+"""
+
+import os
+import sys
+
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+import numpy as np
+
+from hairbrush_env import hair
+from hairbrush_env.scene import BrushingSim, SceneConfig
+
+wig, scale, b_l = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
+speeds = [float(v) for v in sys.argv[4].split(",")]
+n_seeds = int(sys.argv[5]) if len(sys.argv) > 5 else 3
+sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig].replace(mass_scale=scale)))
+for speed in speeds:
+    forces = []
+    for seed in range(n_seeds):
+        sim.reset(seed)
+        forces.append(sim.stroke(b_l, speed=speed, abort_force=None).max_force)
+    print(
+        f"{wig} mass_scale {scale:g} b_l {b_l:g} speed {speed:g} m/s: max force",
+        " ".join(f"{f:.2f}" for f in forces),
+        f"mean {np.mean(forces):.2f} ± {np.std(forces):.2f} N",
+        flush=True,
+    )
