@@ -304,42 +304,48 @@ class BrushingSim:
 
     # --------------------------------------------------------------------------------------- reset
     def settled_state(self, seed: int) -> np.ndarray:
-        """The pre-brushed state for ``seed`` (from the cache, or shaken now and cached)."""
+        """The pre-brushed state for ``seed`` (from the cache, or prepared now and cached)."""
         state = self.cache.get(self.wig, seed, self.model_hash)
         if state is None:
-            # The whole preparation runs at the contact step. At the 10 ms free step the prestressed pairs passed
-            # through each other as soon as they were released (seed 0: 24 crossings in curly's shake, 38 in
-            # coily's, the first at t = 0.05 s), and the pre-brushed wigs had lost a third (curly) to two thirds
-            # (coily) of their link that way; at 1 ms there is none (tests/test_scene.py, preparation test).
-            self.use_step(contact=True)
-            hairmod.set_state(self.model, self.data, self._base_state)
-
-            def observe(model: mujoco.MjModel, data: mujoco.MjData) -> None:
-                for fn in self._step_observers:
-                    fn(self)
-
-            hairmod.shake(
-                self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies, on_step=observe
-            )
-            # A curtain one group deep swings as a pendulum after the shake (straight: ±12 cm along x, decaying to
-            # ±5 cm only after 3.5 s under the hair's own damping), while a real wig is brushed once it hangs still:
-            # let it come to rest under a heavy damping of the hair joints, as a hand steadying the wig would.
-            dofs = self._hair_dofs
-            damping = self.model.dof_damping[dofs].copy()
-            self.model.dof_damping[dofs] = damping * _STEADY_DAMPING
-            try:
-                for _ in range(round(_STEADY_SECONDS / self.model.opt.timestep)):
-                    mujoco.mj_step(self.model, self.data)
-                    observe(self.model, self.data)
-            finally:
-                self.model.dof_damping[dofs] = damping
-            for _ in range(round(_QUIET_SECONDS / self.model.opt.timestep)):
-                mujoco.mj_step(self.model, self.data)
-                observe(self.model, self.data)
-            self.use_step(contact=False)
-            state = hairmod.get_state(self.model, self.data)
+            state = self.prepare(seed)
             self.cache.put(self.wig, seed, self.model_hash, state)
         return state
+
+    def prepare(self, seed: int, *, contact_step: bool = True) -> np.ndarray:
+        """Run the pre-brushed preparation for ``seed`` from the built wig, uncached, and return its state (step
+        observers see every step).
+
+        The whole preparation runs at the contact step. ``contact_step=False`` runs it at the 10 ms free step, as it
+        was before the correction, for probes only: there the prestressed pairs passed through each other as soon as
+        they were released (24 crossings in curly's preparation, 40 in coily's, seed 0) and lost a third (curly) to
+        more than half (coily) of their link (``scripts/probe_preparation.py``, ``docs/detangling.md``,
+        *Correction*).
+        """
+        self.use_step(contact=contact_step)
+        hairmod.set_state(self.model, self.data, self._base_state)
+
+        def observe(model: mujoco.MjModel, data: mujoco.MjData) -> None:
+            for fn in self._step_observers:
+                fn(self)
+
+        hairmod.shake(self.model, self.data, self.wig, seed, strand_bodies=self.hair_bodies, on_step=observe)
+        # A curtain one group deep swings as a pendulum after the shake (straight: ±12 cm along x, decaying to
+        # ±5 cm only after 3.5 s under the hair's own damping), while a real wig is brushed once it hangs still:
+        # let it come to rest under a heavy damping of the hair joints, as a hand steadying the wig would.
+        dofs = self._hair_dofs
+        damping = self.model.dof_damping[dofs].copy()
+        self.model.dof_damping[dofs] = damping * _STEADY_DAMPING
+        try:
+            for _ in range(round(_STEADY_SECONDS / self.model.opt.timestep)):
+                mujoco.mj_step(self.model, self.data)
+                observe(self.model, self.data)
+        finally:
+            self.model.dof_damping[dofs] = damping
+        for _ in range(round(_QUIET_SECONDS / self.model.opt.timestep)):
+            mujoco.mj_step(self.model, self.data)
+            observe(self.model, self.data)
+        self.use_step(contact=False)
+        return hairmod.get_state(self.model, self.data)
 
     def reset(self, seed: int = 0) -> None:
         """Restore the cached pre-brushed wig for ``seed`` with the brush parked beside the hair (time = 0)."""
