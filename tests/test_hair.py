@@ -147,6 +147,28 @@ def test_group_rows_sets_the_depth_of_the_curtain() -> None:
     assert lay.spacing == pytest.approx(0.04) and lay.max_cross_link < 0.4
 
 
+@pytest.mark.parametrize("name", ["wavy", "curly", "coily"])
+def test_curtain_roots_lie_across_the_tines(name: str) -> None:
+    """A comb tine (along x) parts two strands only by their y. In a one-row curtain every group's roots are spread
+    along y: a pair's two roots 2R apart at the same x, a triple's three at distinct y. With pairs whose roots lay
+    along x (the checkerboard's phase 0) a full stroke left them 2.65–2.88 of their 3.07 link, the pairs across
+    the curtain 0.63–0.72 (curly, seed 0; docs/detangling.md, *Root orientation*)."""
+    wig = hair.PRESETS[name]
+    lay = hair.wig_layout(wig)
+    assert wig.group_rows == 1
+    for members in lay.groups:
+        roots = lay.roots[list(members)]
+        y = np.sort(roots[:, 1])
+        if len(members) == 2:
+            assert abs(roots[0, 0] - roots[1, 0]) < 1e-9
+            assert y[1] - y[0] == pytest.approx(2.0 * wig.curl_radius)
+        else:
+            assert np.diff(y).min() > 0.8 * wig.curl_radius
+    # with several group rows the checkerboard stays: neighbouring groups' roots are turned by π/2
+    deep = hair.wig_layout(wig.replace(group_rows=2))
+    assert deep.max_cross_link < 0.4
+
+
 def test_entanglement_sees_link_made_between_any_two_strands() -> None:
     """A brush that winds strands of different groups round each other must not look like progress: link between
     non-entwined strands above the census threshold counts (issue 21)."""

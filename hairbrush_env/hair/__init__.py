@@ -15,7 +15,10 @@ apart and phase difference ``Δφ``, the horizontal vector between points at equ
 therefore put on a square lattice with alternating phase offsets (0, π/2 — a checkerboard, which lowers the
 largest cross-group ``c`` from ``2R`` to ``√2 R``) and the lattice spacing is the smallest one for which every
 cross-group pair of rest curves is unlinked and at least ``2r + root_gap`` apart (checked numerically by
-:func:`wig_layout`). Entanglement is thus purely topological and known exactly at build time.
+:func:`wig_layout`). Entanglement is thus purely topological and known exactly at build time. A curtain one group
+deep (``group_rows = 1``, the default) is the exception: there every group turns its roots across the curtain,
+perpendicular to the comb's tines (pairs at ``y ± R``), because a tine parts two strands only by their ``y``; its
+groups share one phase (``c = 2R``, still well below the 40 mm spacing).
 
 Wisp scaling (guide strands standing for a lock of hair)
 --------------------------------------------------------

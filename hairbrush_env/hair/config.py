@@ -145,9 +145,11 @@ class WigConfig:
         stress-free, so the elastic energy pulls combed-apart strands back into their double helix. ``ψ > 0`` moves
         each strand's own helix axis off the group's, ``2R sin(ψ/2)`` from where it is built (two strands of a pair
         then rest ``4R sin(ψ/2)`` apart): entwining becomes a prestressed state held by topology, as for real curls
-        whose follicles do not share an axis. Default ``π/2``: the splay with which repeated strokes remove the link
-        and force falls stroke by stroke (``ψ = 0`` keeps re-winding, ``π/3`` stalls; ``docs/detangling.md``).
-        Straight wigs ignore it; flex wigs need ``0``.
+        whose follicles do not share an axis. Default ``π/3``: the two strands of a pair rest side by side, just
+        touching. ``ψ = 0`` keeps re-winding; with ``π/2`` each strand rests √2 R off its group axis, among the
+        curls of the neighbouring groups, and repeated strokes wound the pairs up again (curly, seed 0: 0.25 of
+        the link left after one full stroke, 0.56 after six; ``π/3``: 0.31 and 0.27; ``docs/detangling.md``,
+        *Root orientation and splay*). Straight wigs ignore it; flex wigs need ``0``.
     group_rows : int or None
         Rows of groups along the brush's depth axis (x); the columns follow. ``None``: about ``√(n_groups/1.5)``
         (wider than deep). Default 1: a curtain one group deep, in which no tine collects strands of several groups
@@ -182,7 +184,7 @@ class WigConfig:
     shake_frequency: float = 3.0
     rgba: tuple[float, float, float, float] = HAIR_RGBA
     rod_kind: rods.RodKind = "chain"
-    rest_splay: float = math.pi / 2
+    rest_splay: float = math.pi / 3
     group_rows: int | None = 1
     mass_scale: float = MASS_SCALE
 

@@ -105,6 +105,14 @@ def _polygon_turns(wig: WigConfig) -> float:
 
 _STRAIGHT_GROUP_RADIUS = 4e-3
 
+# A curtain's groups (one row) turn their roots across it, perpendicular to the comb's tines (which run along x):
+# a tine parts two strands only by their y, so a pair whose roots lay along x, one behind the other on the tine's
+# line, was never split near its roots. A full stroke through the checkerboard curtain left such pairs 2.65–2.88 of
+# their 3.07 link and the pairs across it 0.63–0.72 (curly, seed 0; docs/detangling.md, *Root orientation*).
+# Pairs: phase π/2 puts the roots at y ± R; triples: phase 0 spreads them to y 0, ± 0.87 R. Neighbouring groups then
+# share their phases (c = 2R in the package docstring), which the spacing check below still keeps unlinked.
+_CURTAIN_PHASE = {2: 0.5 * math.pi, 3: 0.0}
+
 
 def _grid(n: int, rows: int | None = None) -> tuple[list[tuple[int, int]], int, int]:
     # Rows along x (towards the brush), columns along y (across the brush): wider than deep, so that the
@@ -136,8 +144,12 @@ def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
     phases: list[float] = []
     for g, members in enumerate(groups):
         i, j = cells[g]
-        # checkerboard: neighbours differ by π/2 (package docstring); straight groups have no link to keep apart
-        offset = 0.5 * math.pi * ((i + j) % 2) if wig.curliness > 0 else 0.5 * math.pi
+        if wig.curliness <= 0:
+            offset = 0.5 * math.pi  # straight groups have no link to keep apart
+        elif rows == 1:
+            offset = _CURTAIN_PHASE[len(members)]
+        else:
+            offset = 0.5 * math.pi * ((i + j) % 2)  # checkerboard: neighbours differ by π/2 (package docstring)
         phases.extend(offset + 2.0 * math.pi * m / len(members) for m in range(len(members)))
     owner = np.array([g for g, members in enumerate(groups) for _ in members])
     need = 2.0 * r + wig.root_gap
