@@ -148,8 +148,8 @@ def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
             offset = 0.5 * math.pi  # straight groups have no link to keep apart
         elif rows == 1:
             offset = _CURTAIN_PHASE[len(members)]
-        else:
-            offset = 0.5 * math.pi * ((i + j) % 2)  # checkerboard: neighbours differ by π/2 (package docstring)
+        else:  # checkerboard: neighbours differ by π/2 (package docstring)
+            offset = 0.5 * math.pi * ((i + j) % 2)
         phases.extend(offset + 2.0 * math.pi * m / len(members) for m in range(len(members)))
     owner = np.array([g for g, members in enumerate(groups) for _ in members])
     need = 2.0 * r + wig.root_gap
