@@ -320,7 +320,7 @@ def _force_table(names: list[str], fractions: tuple[float, ...]) -> dict[str, li
 def test_force_table_reduced() -> None:
     """Thesis Figs 3.6(ii) and 3.7 (reduced; seed 0, one stroke per cell, no abort): straight hair hangs between the
     comb's tines and barely loads it (measured 0.01 N, far below F_T); curly's full stroke reads more than its short
-    one (3.22 vs 5.59 N) and more than straight's."""
+    one (4.90 vs 10.21 N) and more than straight's."""
     t = _force_table(["straight", "curly"], (0.33, 1.0))
     assert t["straight"][1] < 0.5
     assert t["curly"][0] < t["curly"][1]
@@ -338,8 +338,8 @@ def test_force_table_straight_stays_below_pain_and_short_strokes_read_less(
 ) -> None:
     """Fig. 3.7 on every preset (seed 0; table: ``hairbrush strokes --wigs straight,wavy,loose_curl,curly,tight_curl,
     coily --brush-lengths 0.33,0.67,1``, docs/wigs.md): straight stays below 0.5 N at every b_l (measured ≤ 0.02);
-    Fig. 3.6(ii): a third of a stroke reads less than the full one on every curled preset (measured 0.65–4.46 against
-    1.36–8.70 N)."""
+    Fig. 3.6(ii): a third of a stroke reads less than the full one on every curled preset (measured 1.63–4.90 against
+    4.19–13.97 N)."""
     t = thesis_force_table
     assert max(t["straight"]) < 0.5
     for name in ("wavy", "loose_curl", "curly", "tight_curl", "coily"):
@@ -350,9 +350,9 @@ def test_force_table_straight_stays_below_pain_and_short_strokes_read_less(
 @pytest.mark.xfail(
     strict=True,
     raises=AssertionError,
-    reason="loose_curl's full stroke reads less than its two-thirds stroke on every seed (seed 0: 1.28, 4.69, 1.36 N "
-    "at b_l 0.33, 0.67, 1), so neither the growth with b_l nor the growth of the full stroke with curliness holds "
-    "(full strokes, seed 0: straight 0.01, wavy 5.59, loose_curl 1.36, curly 5.59 N); docs/wigs.md",
+    reason="seed 0: loose_curl's full stroke reads less than its two-thirds stroke (3.04, 4.61, 4.19 N at b_l 0.33, "
+    "0.67, 1; over seeds 0-2 it grows: 2.99, 4.70, 5.25 N) and wavy's full stroke reads more than loose_curl's "
+    "(7.28 against 4.19 N; over seeds 0-2 7.98 against 5.25); docs/wigs.md",
 )
 def test_force_table_thesis_scale(thesis_force_table: dict[str, list[float]]) -> None:
     """Fig. 3.7: the force grows with b_l (0.33 < 0.67 < 1) on every curled preset, and the full-stroke force rises
@@ -368,8 +368,8 @@ def test_force_table_thesis_scale(thesis_force_table: dict[str, list[float]]) ->
 @pytest.mark.xfail(
     strict=True,
     raises=AssertionError,
-    reason="coily's full stroke reads 8.70 N on seed 0 (11.08 ± 2.28 over seeds 0-2: above F_T = 10 N on seeds 1 and "
-    "2), and the full-stroke force is not monotone in curliness (loose_curl 1.36 N, below wavy's 5.59); docs/wigs.md",
+    reason="coily's full stroke reads 13.97 N on seed 0, above F_T = 10 N, but the full-stroke force is not monotone "
+    "in curliness: wavy 7.28 N, loose_curl 4.19 N (seed 0; 7.98 and 5.25 over seeds 0-2); docs/wigs.md",
 )
 def test_force_table_curliest_full_stroke_exceeds_pain_threshold(
     thesis_force_table: dict[str, list[float]],

@@ -70,8 +70,8 @@ def test_summary_statistics() -> None:
     strict=True,
     raises=AssertionError,
     reason="mass-scaled strands (WigConfig.mass_scale = 10) are not quasi-static at these speeds: curly at b_l 0.67 "
-    "reads 5.03 N at 0.05 m/s and 7.95 N at 0.2 (+58 %), against 3.09 and 3.80 N (+23 %) with the real mass "
-    "(scripts/probe_speed.py, docs/detangling.md)",
+    "reads 4.77 / 5.15 / 6.76 / 8.98 N at 0.025 / 0.05 / 0.1 / 0.2 m/s (0.05 to 0.2: +74 %; hairbrush strokes "
+    "--speeds, docs/detangling.md), against +12 to +23 % with the real mass",
 )
 def test_speed_changes_max_force_little(tmp_path) -> None:
     """Thesis Fig. 3.8: at a fixed brush length, a 4× change of brushing speed changes the mean max force little

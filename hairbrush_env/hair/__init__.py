@@ -31,8 +31,8 @@ scales the tine force as ``f = F l₀² / B`` with ``f_max ~ 5–70`` per double
 (``R/r = 15``, one wisp turn standing for many real turns, few contacts per turn) jams far less than a real curl, so
 ``κ ≫ 1``; forces grow about linearly in ``κ``. The wave-1 wig used ``κ = 50`` (:data:`WAVE1_COHESION`) under a soft
 paddle brush that pushed whole groups aside. Under the comb, whose tines split every pair, ``κ = 12.5`` puts the
-first full stroke through the curled presets at 1.7–11.1 N (means over seeds 0–2; coily's above the thesis's pain
-threshold ``F_T = 10 N``, ``docs/wigs.md``). Stiffer
+first full stroke through the curled presets at 5.3–13.7 N (means over seeds 0–2; curly's, tight_curl's and
+coily's above the thesis's pain threshold ``F_T = 10 N``, ``docs/wigs.md``). Stiffer
 wisps read more (``κ = 16``: 7–11 N; 20: 8–10.5 N) but comb out less (curly, seed 0: 0.46 of the entanglement left
 after six strokes at ``κ = 16``) and are squeezed into each other more (``docs/detangling.md``).
 
@@ -65,8 +65,10 @@ step). Strands taut between the roots and a tine sank into each other to 0.04 of
 inertia keeps them ≥ 0.86 apart at the same step and cost. MuJoCo's ``gravcomp`` takes the extra weight off again,
 so strands hang and bend as ``density`` and ``young`` say (the static validations are unchanged), and the shake of
 the preparation forces the real mass. A 2 ms step with ``s = 10`` halves the CPU but diverged in 2 of 6 series.
-Caveat: at 0.05–0.2 m/s the mass-scaled stroke is *not* quasi-static (curly, b_l 0.67: +58 % force for a 4× speed,
-against +23 % with the real mass), so its forces and combing carry inertia (``docs/detangling.md``, *Fig. 3.8*).
+Caveat: at the default 0.1 m/s pull the mass-scaled stroke is *not* quasi-static (curly, b_l 0.67: 4.77, 5.15, 6.76,
+8.98 N at 0.025, 0.05, 0.1, 0.2 m/s, against +12 to +23 % for 4× with the real mass), and the comb splits pairs
+only with the scaled inertia: with the real mass the pairs near the roots are pushed aside between two tines and
+nothing combs out (``docs/detangling.md``, *What the real mass does with the same comb*, *Fig. 3.8*).
 
 Prestress (``WigConfig.rest_splay``): built as coaxial helices with stress-free rest curves, the entwined state is
 the *only* stress-free one (a helix is fixed by its root frame), so combed-apart strands wind themselves back up.
