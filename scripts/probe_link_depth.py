@@ -1,10 +1,11 @@
 """Exploration probe: where the entwined link sits along the strands, before and after repeated full strokes.
 
-    python scripts/probe_link_depth.py WIG SEED STROKES     # e.g. curly 0 6
+    python scripts/probe_link_depth.py WIG SEED STROKES [--pairs]     # e.g. curly 0 6
 
 Prints, after each stroke (b_l = 1, no abort), Σ|Lk| of the entwined pairs split by depth below the roots (each
 pair's link density, ``topology.link_density``, summed in its own sense) and, at the end, every pair's signed link
-next to the link it was built with (docs/detangling.md, *What holds the link*).
+next to the link it was built with (docs/detangling.md, *What holds the link*). ``--pairs`` also prints every pair's
+signed link by depth with its root positions, after each stroke (*Root orientation and splay*).
 """
 
 import os
@@ -17,6 +18,7 @@ from hairbrush_env.scene import BrushingSim, SceneConfig
 from hairbrush_env.topology.gauss import link_density
 
 wig, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+per_pair = "--pairs" in sys.argv[4:]
 sim = BrushingSim(SceneConfig(wig=wig))
 sim.reset(seed)
 print(f"roots z {sim.hair_top:.3f} m, highest stroke start {sim.start_height(1.0):.3f} m")
@@ -36,6 +38,19 @@ def report(tag: str) -> None:
         total += abs(lk)
         k = np.clip(np.digitize(depth, edges) - 1, 0, len(band) - 1)
         np.add.at(band, k, np.sign(lk) * ell)
+        if per_pair:
+            mine = np.zeros(len(band))
+            np.add.at(mine, k, ell)
+            r = 1e3 * sim.layout.roots[[i, j]]
+            print(
+                f"  pair ({i},{j}) roots x {r[0, 0]:+.1f} {r[1, 0]:+.1f} y {r[0, 1]:+.1f} {r[1, 1]:+.1f} mm:",
+                f"Lk {lk:+.2f};",
+                " ".join(
+                    f"{1e3 * edges[q]:.0f}-{1e3 * edges[q + 1]:.0f}:{mine[q]:+.2f}"
+                    for q in range(len(mine))
+                    if mine[q]
+                ),
+            )
     bands = " ".join(f"{1e3 * edges[q]:.0f}-{1e3 * edges[q + 1]:.0f}:{band[q]:.2f}" for q in range(len(band)))
     print(f"{tag}: Σ|Lk| entwined {total:.2f}; by depth below the roots [mm] {bands}", flush=True)
 
