@@ -164,8 +164,10 @@ def test_curtain_roots_lie_across_the_tines(name: str) -> None:
             assert y[1] - y[0] == pytest.approx(2.0 * wig.curl_radius)
         else:
             assert np.diff(y).min() > 0.8 * wig.curl_radius
-    # with several group rows the checkerboard stays: neighbouring groups' roots are turned by π/2
+    # with several group rows the checkerboard stays: some pairs' roots lie along x, others along y
     deep = hair.wig_layout(wig.replace(group_rows=2))
+    along = [np.abs(np.diff(deep.roots[list(m)], axis=0))[0, :2] for m in deep.groups if len(m) == 2]
+    assert any(dx < 1e-9 for dx, _ in along) and any(dy < 1e-9 for _, dy in along)
     assert deep.max_cross_link < 0.4
 
 

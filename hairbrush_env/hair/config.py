@@ -49,9 +49,9 @@ WISP_COHESION = 12.5
 """Force-scale calibration ``κ = B_w / (n B_h)`` of a wisp (:mod:`hairbrush_env.hair`, *Wisp scaling*).
 
 ``κ = 1``: the ``n`` hairs of a wisp bend independently; ``κ = n``: they are bonded into one solid keratin fibre. 12.5
-(``E_w = 125 MPa`` at ``r_w = 0.8 mm``): the comb's first full stroke through the curled presets reads 1.7–11.1 N
-(means over seeds, ``docs/wigs.md``) and combs out about half of curly's link; stiffer wisps read more but combed out
-less on the wigs before the preparation was corrected (``docs/detangling.md``)."""
+(``E_w = 125 MPa`` at ``r_w = 0.8 mm``): the comb's first full stroke through the curled presets reads 5.3–13.7 N
+(means over seeds, ``docs/wigs.md``) and leaves 0.37–0.41 of curly's entanglement; stiffer wisps read more but combed
+out less on the wigs before the preparation was corrected (``docs/detangling.md``)."""
 
 MASS_SCALE = 10.0
 """Default inertia multiplier of chain strands (:attr:`WigConfig.mass_scale`; *Mass scaling* in

@@ -18,14 +18,18 @@ def test_plateau_stroke_is_eq_3_4():
 
 
 def test_rows_of_a_short_run():
-    wig = get_wig("curly").replace(name="test_rep", n_strands=4, n_triples=0, length=0.2)
+    # splay π/2: at the default π/3 the two pairs' free ends wind on in the shake to 1.22× their built link (5.14 of
+    # 4.21), past the bound below; the default preparation is watched for crossings in tests/test_scene.py
+    wig = get_wig("curly").replace(
+        name="test_rep", n_strands=4, n_triples=0, length=0.2, rest_splay=math.pi / 2
+    )
     sim = BrushingSim(SceneConfig(wig=wig))
     seen = []
     rows = repeated_strokes(sim, seed=0, n_strokes=2, on_stroke=seen.append)
     assert rows == seen and [r["stroke"] for r in rows] == [0, 1, 2]
-    # no strand passes through another in the shake, so the pairs keep their built link; the prestressed pairs'
-    # free ends wind on beyond it (measured 5.14 of 4.21 built at the default splay π/3, 4.73 at π/2)
-    assert 0.9 * sim.layout.n_links < rows[0]["entanglement"] < 1.3 * sim.layout.n_links
+    # no strand passes through another in the shake, so the pairs keep their built link; the prestressed pairs wind
+    # a little beyond it (measured 4.72 of 4.21 built)
+    assert 0.9 * sim.layout.n_links < rows[0]["entanglement"] < 1.2 * sim.layout.n_links
     for r in rows[1:]:
         assert r["max_force"] > 0 and not r["aborted"] and not r["diverged"] and r["cpu_s"] > 0
         assert r["crossings"] == 0 and r["min_hair_hair"] > 0.5 and not math.isnan(r["min_hair_bristle"])
