@@ -82,9 +82,11 @@ def _make_algo(cfg: TrainConfig, venv, log_dir: Path):
         n_steps = max(8, min(128, cfg.total_timesteps // max(cfg.n_envs, 1) // 2))
         batch = max(8, min(64, n_steps * cfg.n_envs // 2))
         return sb3.PPO(n_steps=n_steps, batch_size=batch, n_epochs=10, gamma=0.95, **common)
-    # the buffer holds the whole run (strokes are expensive, none is worth forgetting) and stays small to checkpoint
+    # the buffer holds the whole run (strokes are expensive, none is worth forgetting) and stays small to checkpoint;
+    # two gradient steps per collected stroke: an update costs milliseconds, a stroke 10-40 s of physics
     return sb3.SAC(
         learning_starts=min(200, cfg.total_timesteps // 4),
+        gradient_steps=2 * max(cfg.n_envs, 1),
         buffer_size=max(1_000, min(50_000, cfg.total_timesteps)),
         gamma=0.95,
         **common,
