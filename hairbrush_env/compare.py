@@ -162,6 +162,10 @@ def _sorted(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return sorted(rows, key=lambda r: (r["R_over_P"], r["wig"], r["policy"], r["episode"]))
 
 
+#: Columns of the summary, each as mean ± std over a cell's episodes (the RL issue's comparison table).
+SUMMARY_KEYS = ("total_reward", "max_force", "sim_time", "strokes", "pain_violations", "entanglement_final")
+
+
 def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     """Mean ± std over episodes per (wig, policy)."""
     groups: dict[tuple[str, str], list[dict[str, Any]]] = {}
@@ -170,7 +174,7 @@ def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     table = []
     for (wig, policy), rs in groups.items():
         entry: dict[str, Any] = {"wig": wig, "policy": policy, "R_over_P": rs[0]["R_over_P"], "n": len(rs)}
-        for key in ("max_force", "sim_time", "strokes", "pain_violations", "entanglement_final"):
+        for key in SUMMARY_KEYS:
             vals = np.array([r[key] for r in rs], dtype=float)
             entry[key] = (float(vals.mean()), float(vals.std(ddof=1)) if len(vals) > 1 else 0.0)
         table.append(entry)
@@ -180,12 +184,12 @@ def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
 
 def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
     lines = [
-        "| wig | R/P | policy | n | max force [N] | time [s] | strokes | pain violations | final entanglement |",
-        "|---|---:|---|---:|---:|---:|---:|---:|---:|",
+        "| wig | R/P | policy | n | return | max force [N] | time [s] | strokes | pain violations "
+        "| final entanglement |",
+        "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for e in summarize(rows):
-        cells = [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in ("max_force", "sim_time", "strokes"))]
-        cells += [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in ("pain_violations", "entanglement_final"))]
+        cells = [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in SUMMARY_KEYS)]
         lines.append(
             f"| {e['wig']} | {e['R_over_P']:.2f} | {e['policy']} | {e['n']} | " + " | ".join(cells) + " |"
         )
