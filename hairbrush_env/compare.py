@@ -1,7 +1,8 @@
 """Policy × wig comparison grid (thesis Figs 3.7, 3.8, 3.11 in simulation), used by ``hairbrush compare``.
 
-Every (wig, policy, episode) cell runs one episode on ``HairBrush-v0`` with seed ``seed + episode`` — the same
-seeds for every policy, so policies meet the same pre-brushed wigs. Finished rows are appended to
+Every (wig, policy, episode) cell runs one episode on ``HairBrush-v0`` with seed ``seed + episode``, from the
+``episode``-th pre-brushed state of the wig (cycling through them) — the same seeds and states for every policy, so
+policies meet the same pre-brushed wigs and the episodes of a cell meet distinct ones. Finished rows are appended to
 ``results.csv`` as they complete (atomically rewritten), so an interrupted grid keeps its rows and a rerun skips
 them.
 """
@@ -25,6 +26,7 @@ COLUMNS = [
     "abort_force",
     "episode",
     "seed",
+    "wig_seed",
     "max_force",
     "sim_time",
     "strokes",
@@ -54,6 +56,8 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
     for row in rows:
         value = row.get("abort_force", "")
         row["abort_force"] = float(value) if value not in ("", "None", None) else None
+        value = row.get("wig_seed", "")  # absent from grids run before episodes were given distinct wigs
+        row["wig_seed"] = int(value) if value not in ("", "None", None) else None
     return rows
 
 
@@ -69,14 +73,24 @@ def run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: di
     from .policies import make_policy
     from .rollout import run_episode
 
-    # held-out wigs are brushed from the held-out pre-brushed states (RL's test set), the others from seeds 0-3
+    # held-out wigs are brushed from the held-out pre-brushed states (RL's test set), the others from seeds 0-3;
+    # episode k starts from the k-th of them (cycling), so the episodes of a cell meet distinct wigs and every policy
+    # meets the same ones (drawn by the seed, two of three episodes met the same wig)
     env_kwargs = {"wig_seeds": brushing_seeds([wig]), **env_kwargs}
+    wig_seeds = tuple(env_kwargs["wig_seeds"])
     key = (wig, repr(sorted(env_kwargs.items())))
     if key not in _ENVS:
         _ENVS[key] = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", **env_kwargs)
     env = _ENVS[key]
     policy = make_policy(policy_name, env)
-    log = run_episode(env, policy, episode=episode, seed=seed + episode, policy_name=policy_name)
+    log = run_episode(
+        env,
+        policy,
+        episode=episode,
+        seed=seed + episode,
+        policy_name=policy_name,
+        wig_seed=wig_seeds[episode % len(wig_seeds)],
+    )
     return log.summary()
 
 

@@ -44,6 +44,7 @@ class EpisodeLog:
     truncated: bool = False
     diverged: bool = False
     abort_force: float | None = None
+    wig_seed: int | None = None
 
     @property
     def max_force(self) -> float:
@@ -62,6 +63,7 @@ class EpisodeLog:
             "R_over_P": self.curliness_true,
             "policy": self.policy,
             "abort_force": self.abort_force,
+            "wig_seed": self.wig_seed,
             "max_force": self.max_force,
             "sim_time": round(self.sim_time, 3),
             "strokes": len(self.steps),
@@ -86,15 +88,19 @@ def run_episode(
     seed: int,
     policy_name: str,
     on_step: Callable[[EpisodeLog, StepLog, dict], None] | None = None,
+    wig_seed: int | None = None,
 ) -> EpisodeLog:
     """Run one episode to its end (termination or truncation) and return its log.
 
     ``on_step(log, step, info)`` is called after every env step (recording, progress). A policy with an
     ``abort_force`` attribute (a force [N], or ``None`` to pull through) has the stroke env abort its strokes there
-    (``reset(options={"abort_force": ...})``), so every policy brushes as it would in the thesis.
+    (``reset(options={"abort_force": ...})``), so every policy brushes as it would in the thesis. ``wig_seed`` names
+    the pre-brushed state to start from (``reset(options={"wig_seed": ...})``); by default the seed draws it.
     """
-    options = {"abort_force": policy.abort_force} if hasattr(policy, "abort_force") else None
-    obs, info = env.reset(seed=seed, options=options)
+    options: dict[str, Any] = {"abort_force": policy.abort_force} if hasattr(policy, "abort_force") else {}
+    if wig_seed is not None:
+        options["wig_seed"] = int(wig_seed)
+    obs, info = env.reset(seed=seed, options=options or None)
     policy.reset(seed)
     log = EpisodeLog(
         episode=episode,
@@ -104,6 +110,7 @@ def run_episode(
         curliness_true=float(info["curliness_true"]),
         entanglement_initial=float(info["entanglement_initial"]),
         abort_force=getattr(getattr(env, "unwrapped", env), "abort_force", None),
+        wig_seed=info.get("wig_seed"),
     )
     while True:
         t_start = float(info.get("sim_time", 0.0))

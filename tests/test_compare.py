@@ -22,6 +22,7 @@ def _row(wig: str, policy: str, episode: int, max_force: float, curliness: float
         "abort_force": None if policy == "naive" else 10.0,
         "episode": episode,
         "seed": episode,
+        "wig_seed": episode % 4,
         "max_force": max_force,
         "sim_time": 10.0 + episode,
         "strokes": 3 + episode,
@@ -130,3 +131,41 @@ def test_unknown_names_fail_before_anything_is_simulated(tmp_path) -> None:
     with pytest.raises(ValueError, match="valid names"):
         compare.run_grid(["curlyy"], ["full"], episodes=1, seed=0, out=tmp_path, progress=False)
     assert not (tmp_path / "results.csv").exists()
+
+
+def test_episodes_of_a_cell_meet_distinct_pre_brushed_wigs(monkeypatch) -> None:
+    """Episode k of every cell starts from the k-th pre-brushed state of its wig (cycling), the same for every
+    policy; the held-out wigs from the held-out states."""
+    import gymnasium
+
+    import hairbrush_env.policies
+    import hairbrush_env.rollout
+    from hairbrush_env.hair import HELD_OUT_SEEDS, TRAIN_WIG_SEEDS
+
+    seen = []
+
+    class Log:
+        def __init__(self, wig_seed):
+            self.wig_seed = wig_seed
+
+        def summary(self):
+            return {"wig_seed": self.wig_seed}
+
+    def fake_episode(env, policy, *, episode, seed, policy_name, wig_seed=None, on_step=None):
+        seen.append((env, policy_name, episode, seed, wig_seed))
+        return Log(wig_seed)
+
+    monkeypatch.setattr(gymnasium, "make", lambda *a, **kw: ("env", kw["wig"], tuple(kw["wig_seeds"])))
+    monkeypatch.setattr(hairbrush_env.policies, "make_policy", lambda name, env: name)
+    monkeypatch.setattr(hairbrush_env.rollout, "run_episode", fake_episode)
+    monkeypatch.setattr(compare, "_ENVS", {})
+    for policy in ("naive", "sigmoid"):
+        for episode in range(5):
+            compare.run_cell("curly", policy, episode, 10, {})
+    for episode in range(3):
+        compare.run_cell("held_out_curly", "naive", episode, 10, {})
+    curly = [s for s in seen if s[0][1] == "curly"]
+    assert [s[4] for s in curly] == [TRAIN_WIG_SEEDS[e % len(TRAIN_WIG_SEEDS)] for e in range(5)] * 2
+    assert [s[3] for s in curly[:5]] == [10, 11, 12, 13, 14]
+    assert [s[4] for s in seen[10:]] == list(HELD_OUT_SEEDS)
+    assert all(s[0][2] == HELD_OUT_SEEDS for s in seen[10:])

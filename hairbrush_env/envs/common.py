@@ -198,27 +198,39 @@ class BrushEnvBase(gym.Env):
             for w in wigs
         ]
         self.sim = self.sims[0]
+        self.wig_seed: int | None = None  # the pre-brushed state of the running episode (set by reset)
         self._e0 = self._e = 1.0
         self._pain = 0
 
     def _image_space(self) -> spaces.Box:
         return spaces.Box(0, 255, shape=(self.height, self.width, 3), dtype=np.uint8)
 
-    def _reset_sim(self, seed: int | None) -> None:
-        """Seed the env, restore a pre-brushed wig and reset the episode's bookkeeping."""
+    def _reset_sim(self, seed: int | None, wig_seed: int | None = None) -> None:
+        """Seed the env, restore a pre-brushed wig and reset the episode's bookkeeping.
+
+        ``wig_seed`` (reset option) names the pre-brushed state, one of ``wig_seeds``; by default the seed draws it.
+        """
+        if wig_seed is not None and wig_seed not in self.wig_seeds:
+            raise ValueError(
+                f"options: wig_seed {wig_seed!r} is not one of this env's pre-brushed states {self.wig_seeds}"
+            )
         super().reset(seed=seed)
         # The seed picks the wig (when the env holds several) and one of a few cached pre-brushed states (shaking a
         # wig anew on every reset would cost seconds); the load-cell noise of the episode also comes from
         # self.np_random.
         if len(self.sims) > 1:
             self.sim = self.sims[int(self.np_random.integers(len(self.sims)))]
-        self.sim.reset(self.wig_seeds[int(self.np_random.integers(len(self.wig_seeds)))])
+        if wig_seed is None:
+            wig_seed = self.wig_seeds[int(self.np_random.integers(len(self.wig_seeds)))]
+        self.wig_seed = int(wig_seed)
+        self.sim.reset(self.wig_seed)
         self.sim.load_cell.rng = self.np_random
         self._e0 = self._e = self.sim.entanglement()
         self._pain = 0
 
     def _common_info(self, diverged: bool) -> dict[str, Any]:
         return {
+            "wig_seed": self.wig_seed,
             "pain_violations": self._pain,
             "entanglement": float(self._e),
             "entanglement_initial": float(self._e0),

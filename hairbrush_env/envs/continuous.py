@@ -123,7 +123,12 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         self._passes = 0
 
     def reset(self, *, seed: int | None = None, options: dict | None = None):
-        self._reset_sim(seed)
+        """Start an episode; ``options={"wig_seed": s}`` as in `HairBrush-v0`."""
+        options = dict(options or {})
+        wig_seed = options.pop("wig_seed", None)
+        if options:
+            raise ValueError(f"options: unknown keys {sorted(options)}; known: ['wig_seed']")
+        self._reset_sim(seed, wig_seed)
         self._t, self._max_force = 0.0, 0.0
         self._force = np.zeros(3)
         self._pass_fmax, self._prev_pass_fmax, self._passes = None, None, 0

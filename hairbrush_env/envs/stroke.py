@@ -208,15 +208,18 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     # --- gymnasium API -----------------------------------------------------------------------------------------
     def reset(self, *, seed: int | None = None, options: dict | None = None):
         """Start an episode. ``options={"abort_force": F or None}`` sets the abort of this episode only (how a
-        rollout applies the abort its policy declares); without it the constructor's ``abort_force`` holds."""
+        rollout applies the abort its policy declares); without it the constructor's ``abort_force`` holds.
+        ``options={"wig_seed": s}`` starts from the pre-brushed state ``s`` (one of ``wig_seeds``) instead of the one
+        the seed draws (how a comparison gives its episodes distinct wigs)."""
         options = dict(options or {})
         self.abort_force = self._default_abort
         if "abort_force" in options:
             value = options.pop("abort_force")
             self.abort_force = None if value is None else check_positive("abort_force", value)
+        wig_seed = options.pop("wig_seed", None)
         if options:
-            raise ValueError(f"options: unknown keys {sorted(options)}; known: ['abort_force']")
-        self._reset_sim(seed)
+            raise ValueError(f"options: unknown keys {sorted(options)}; known: ['abort_force', 'wig_seed']")
+        self._reset_sim(seed, wig_seed)
         self._strokes, self._sim_time = 0, 0.0
         self._prev_fmax = None
         self._last = {

@@ -160,3 +160,12 @@ def test_full_passes_finish_the_curly_preset_and_beat_doing_nothing():
         assert info["entanglement"] < info["entanglement_initial"]
     finally:
         env.close()
+
+
+def test_reset_options(env):
+    """The continuous env takes the stroke env's ``wig_seed`` option and refuses options it does not know."""
+    seeds = env.unwrapped.wig_seeds
+    _, info = env.reset(seed=0, options={"wig_seed": seeds[-1]})
+    assert info["wig_seed"] == seeds[-1]
+    with pytest.raises(ValueError, match="options"):
+        env.reset(seed=0, options={"abort_force": 5.0})

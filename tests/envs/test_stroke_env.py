@@ -226,3 +226,19 @@ def test_abort_force_belongs_to_the_episode(small_wig):
     env.close()
     with pytest.raises(ValueError, match="abort_force"):
         HairBrushEnv(wig=small_wig, abort_force=0.0)
+
+
+def test_wig_seed_option_names_the_pre_brushed_state(small_wig):
+    """``options={"wig_seed": s}`` starts from state ``s`` whatever the seed draws (a comparison gives its episodes
+    distinct wigs that way); a state the env does not hold is refused, naming the option."""
+    env = gym.make("HairBrush-v0", wig=small_wig, n_wig_states=2)
+    _, drawn = env.reset(seed=0)
+    other = 1 - drawn["wig_seed"]
+    _, info = env.reset(seed=0, options={"wig_seed": other})
+    assert info["wig_seed"] == other
+    assert info["entanglement_initial"] != pytest.approx(drawn["entanglement_initial"], abs=1e-9)
+    _, again = env.reset(seed=0)
+    assert again["wig_seed"] == drawn["wig_seed"]
+    with pytest.raises(ValueError, match="wig_seed 7"):
+        env.reset(seed=0, options={"wig_seed": 7})
+    env.close()
