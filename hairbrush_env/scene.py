@@ -46,6 +46,7 @@ from .sensors import LoadCell
 __all__ = [
     "BRUSH_TCP",
     "HEAD_POS",
+    "MAX_STEP_SPLIT",
     "MAX_STROKE_Y",
     "PAIN_THRESHOLD",
     "TOOL_CONTACT_MARGIN",
@@ -60,6 +61,8 @@ __all__ = [
 PAIN_THRESHOLD = PAIN_THRESHOLD_N
 """``F_T`` [N] (thesis §3.5: pain threshold ≈ 10 N; :data:`hairbrush_env.constants.PAIN_THRESHOLD_N`)."""
 
+#: Most substeps a speed-limited contact step is split into (SceneConfig.max_step_travel).
+MAX_STEP_SPLIT = 16
 _HEAD_PLATE = "arm/brush/head_plate"  # passes under the scalp patch: its half height limits the stroke start
 _RETRACT_GAP = 0.015  # tine tips this far in front of the hair before the brush moves beside it
 _QUIET_SECONDS = 0.3  # end of the pre-brushed settle, at the hair's own damping (BrushingSim.settled_state)
@@ -216,6 +219,8 @@ class BrushingSim:
         # from a strand's centerline.
         self._contact_reach = self.wig.strand_radius + hairmod.CONTACT_MARGIN + TOOL_CONTACT_MARGIN
         self._last_curves: np.ndarray | None = None
+        # Fastest strand point's speed over the last contact step [m/s] (SceneConfig.max_step_travel).
+        self._step_speed = 0.0
         self.park = np.array([self.retract_x, 0.0, self.config.free_end_z - 0.02])
 
         # Base state: hair at rest (rest shape = qpos0), arm holding the park pose.
@@ -358,6 +363,7 @@ class BrushingSim:
         self.diverged = False
         self._warn0 = self._warnings()
         self._last_curves = None
+        self._step_speed = 0.0
         ends = np.array([c[-1] for c in self.hair_curves()])
         self.hair_bottom = float(ends[:, 2].min())
         self.load_cell.reset(self.data)
@@ -460,19 +466,38 @@ class BrushingSim:
         in_hair = self._needs_fine_step(target)
         n_sub = self._n_sub_contact if in_hair else self._n_sub
         self.use_step(contact=in_hair)
-        self.n_steps += n_sub
+        limit = self.config.max_step_travel if in_hair else None
+        dt = self.model.opt.timestep
         for _ in range(n_sub):
-            mujoco.mj_step(self.model, self.data)
-            for fn in self._step_observers:
-                fn(self)
-            s = self.load_cell.update(self.data)
-            if s is not None:
-                if samples is not None:
-                    samples.append(s)
-                for fn in self._observers:
-                    fn(self, s)
+            # Speed-limited step (SceneConfig.max_step_travel): split this step by the strands' speed in the last
+            # one, so a free end snapping off a tine cannot jump through the strand it lies across.
+            split = 1
+            if limit is not None and self._step_speed > 0.0:
+                split = min(MAX_STEP_SPLIT, math.ceil(self._step_speed * dt / limit))
+            if split > 1:
+                self.model.opt.timestep = dt / split
+            before = self.hair_curve_array() if limit is not None else None
+            for _ in range(split):
+                self._physics_step(samples)
+            if before is not None:
+                travel = float(np.abs(self.hair_curve_array() - before).max(initial=0.0))
+                self._step_speed = travel / dt
+            if split > 1:
+                self.model.opt.timestep = dt
         self._target = np.asarray(target, dtype=float).copy()
         return not self._check()
+
+    def _physics_step(self, samples: list | None) -> None:
+        mujoco.mj_step(self.model, self.data)
+        self.n_steps += 1
+        for fn in self._step_observers:
+            fn(self)
+        s = self.load_cell.update(self.data)
+        if s is not None:
+            if samples is not None:
+                samples.append(s)
+            for fn in self._observers:
+                fn(self, s)
 
     def _move(self, end: np.ndarray, speed: float) -> bool:
         path = plan_stroke(self._target, end, speed, self.config.control_dt)

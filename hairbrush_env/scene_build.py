@@ -110,6 +110,12 @@ class SceneConfig:
         pairs wound after six strokes). The pull stops earlier once the whole brush is below every strand, so the
         floor costs nothing where the hair lets go. ``None``: a pull ends 1 cm below the rest free ends, or earlier
         once the whole brush is below every strand (the wave-1 stroke, kept for benchmarks; ``docs/detangling.md``).
+    max_step_travel : float or None
+        A float [m]: contact steps are split so that no strand point travels more than this in one physics step
+        (a speed-limited, CFL-like step; the split comes from the speed of the step before, up to
+        ``MAX_STEP_SPLIT`` substeps). A free end snapping off a tine reaches ~3 m/s, 3 mm per 1 ms step, about twice
+        a wisp's diameter, and passes through the strand it lies across within one step; splitting only those
+        steps costs little where a finer step everywhere costs twice the CPU. ``None`` (default): fixed steps.
     scalp_clearance : float
         Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 5 mm (default):
         with the comb's plate the tines enter 8 mm below the roots; link above the highest tine is never combed
@@ -139,6 +145,7 @@ class SceneConfig:
     max_speed: float = 500.0
     scalp_clearance: float = 0.005
     pull_floor_z: float | None = 0.40
+    max_step_travel: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
@@ -157,6 +164,9 @@ class SceneConfig:
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
                 raise ValueError(f"SceneConfig.{name} must be a finite number > 0, got {v!r}")
+        v = self.max_step_travel
+        if v is not None and not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise ValueError(f"SceneConfig.max_step_travel must be None or a finite number > 0, got {v!r}")
         if self.control_dt < self.timestep:
             raise ValueError(f"SceneConfig.control_dt must be >= timestep, got {self.control_dt!r}")
         if self.contact_timestep > self.timestep:

@@ -41,6 +41,7 @@ def sim() -> scene.BrushingSim:
         ({"pull_floor_z": 0.2}, "pull_floor_z"),
         ({"free_speed": 0.0}, "free_speed"),
         ({"stroke_speed": 0.0}, "stroke_speed"),
+        ({"max_step_travel": 0.0}, "max_step_travel"),
     ],
 )
 def test_bad_scene_config_names_field(changes: dict, field: str) -> None:
@@ -185,6 +186,25 @@ def test_free_step_only_beside_hair_whose_strands_hang_apart(sim: scene.Brushing
     n0 = sim.n_steps
     res = sim.stroke(0.3, rng=np.random.default_rng(1))
     assert sim.n_steps - n0 == pytest.approx(res.sim_time / sim.config.contact_timestep, abs=1)
+
+
+def test_speed_limited_step_splits_contact_steps(sim: scene.BrushingSim) -> None:
+    """``SceneConfig.max_step_travel`` splits contact steps by the strands' speed in the step before: the same
+    stroke takes more, shorter physics steps over the same simulated time, and the step is restored after."""
+    sim.reset(0)
+    n0 = sim.n_steps
+    plain = sim.stroke(0.2, rng=np.random.default_rng(1))
+    plain_steps = sim.n_steps - n0
+    # 0.05 mm per 1 ms step is 5 cm/s: below the pull's 0.1 m/s, so the strands the comb drags force splits.
+    with scene.BrushingSim(sim.replace_config(max_step_travel=5e-5)) as fine:
+        fine.reset(0)
+        n0 = fine.n_steps
+        res = fine.stroke(0.2, rng=np.random.default_rng(1))
+        split_steps = fine.n_steps - n0
+        assert fine.model.opt.timestep in (fine.config.timestep, fine.config.contact_timestep)
+    assert not res.diverged
+    assert res.sim_time == pytest.approx(plain.sim_time, abs=0.05)
+    assert 1.2 * plain_steps < split_steps <= scene.MAX_STEP_SPLIT * plain_steps
 
 
 def test_stroke_sideways_offset(sim: scene.BrushingSim) -> None:
