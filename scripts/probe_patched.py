@@ -13,6 +13,10 @@ import os
 import runpy
 import sys
 
+# Before numba is imported (by hairbrush_env): the probe scripts set it too, and numba refuses a change once its
+# threads run.
+os.environ.setdefault("NUMBA_NUM_THREADS", "1")
+
 import hairbrush_env.hair as hair_pkg
 import hairbrush_env.hair.build as hair_build
 import hairbrush_env.rods.chain as chain
