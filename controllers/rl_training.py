@@ -119,7 +119,9 @@ def _step_log_callback(path: Path):
                 row.update(reward=float(rewards[i]), done=bool(dones[i]))
                 row.update({k: v for k, v in info.items() if k.startswith("reward_") or k in STEP_LOG_INFO})
                 if self._writer is None:
-                    self._writer = csv.DictWriter(self._fh, fieldnames=list(row), extrasaction="ignore")
+                    self._writer = csv.DictWriter(
+                        self._fh, fieldnames=list(row), extrasaction="ignore", lineterminator="\n"
+                    )
                     if self._fh.tell() == 0:
                         self._writer.writeheader()
                 self._writer.writerow(row)

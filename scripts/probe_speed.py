@@ -1,7 +1,7 @@
 """Exploration probe: max force of one stroke at several pull speeds, for a given strand mass scale (Fig. 3.8).
 
-    python scripts/probe_speed.py WIG MASS_SCALE B_L SPEED[,SPEED...] [SEEDS] [WIG_FIELDS_JSON]
-    # e.g. curly 1 0.67 0.05,0.2 3 '{"damping": 0.0632}'
+    python scripts/probe_speed.py WIG MASS_SCALE B_L SPEED[,SPEED...] [SEEDS] [WIG_FIELDS_JSON] [SCENE_FIELDS_JSON]
+    # e.g. curly 1 0.67 0.05,0.2 3 '{"damping": 0.0632}' '{"max_step_travel": 0.0008}'
 
 One stroke per (seed, speed) from the pre-brushed wig, no abort; prints the max force per seed and the mean per speed
 (docs/detangling.md, *Correction*: is the mass-scaled stroke still quasi-static?).
@@ -21,7 +21,8 @@ wig, scale, b_l = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
 speeds = [float(v) for v in sys.argv[4].split(",")]
 n_seeds = int(sys.argv[5]) if len(sys.argv) > 5 else 3
 extra = json.loads(sys.argv[6]) if len(sys.argv) > 6 else {}
-sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig].replace(mass_scale=scale, **extra)))
+scene_fields = json.loads(sys.argv[7]) if len(sys.argv) > 7 else {}
+sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig].replace(mass_scale=scale, **extra), **scene_fields))
 for speed in speeds:
     forces = []
     for seed in range(n_seeds):
