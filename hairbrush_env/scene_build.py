@@ -113,9 +113,10 @@ class SceneConfig:
     max_step_travel : float or None
         A float [m]: contact steps are split so that no strand point travels more than this in one physics step
         (a speed-limited, CFL-like step; the split comes from the speed of the step before, up to
-        ``MAX_STEP_SPLIT`` substeps). A free end snapping off a tine reaches ~3 m/s, 3 mm per 1 ms step, about twice
-        a wisp's diameter, and passes through the strand it lies across within one step; splitting only those
-        steps costs little where a finer step everywhere costs twice the CPU. ``None`` (default): fixed steps.
+        ``MAX_STEP_SPLIT`` substeps). Meant for free ends snapping off a tine (~3 m/s, 3 mm per 1 ms step, about
+        twice a wisp's diameter). With real-mass strands most steps of a stroke are that fast, so it costs about as
+        much as a finer step everywhere and does not stop every crossing (docs/detangling.md, *A speed-limited
+        contact step*). ``None`` (default): fixed steps.
     scalp_clearance : float
         Gap [m] between the head plate's top and the scalp at the highest stroke start (``b_l = 1``). 5 mm (default):
         with the comb's plate the tines enter 8 mm below the roots; link above the highest tine is never combed
