@@ -16,13 +16,25 @@ import numpy as np
 
 from .assets import load_part
 
-__all__ = ["BRUSH_PRESETS", "PLATE_FRONT_X", "TINE_PREFIX", "BrushConfig", "brush_spec", "get_brush"]
+__all__ = [
+    "BRUSH_PRESETS",
+    "NYLON_YOUNG",
+    "PLATE_FRONT_X",
+    "TINE_PREFIX",
+    "BrushConfig",
+    "brush_spec",
+    "get_brush",
+    "tine_hinge_stiffness",
+]
 
 PLATE_FRONT_X = 0.065
 """x of the head plate's front face in the brush frame [m]: the tines' roots."""
 
 TINE_PREFIX = "tine_"
 """Name prefix of tine bodies and geoms (``tine_<row>_<column>``)."""
+
+NYLON_YOUNG = 2.8e9
+"""Young's modulus of nylon 6,6 [Pa] (2.5–3.5 GPa)."""
 
 _PLATE_HALF_DEPTH = 0.005
 # The plate extends this far beyond the outermost tines (brush.xml: 9 mm across the rows, 3 mm above/below them).
@@ -135,8 +147,27 @@ class BrushConfig:
         return PLATE_FRONT_X + 0.5 * self.tine_length
 
 
+def tine_hinge_stiffness(
+    length: float, radius: float, *, young: float = NYLON_YOUNG, load_at: float = 0.5
+) -> float:
+    """Root-hinge stiffness [N m/rad] of a tine that deflects like a clamped solid rod under a load ``load_at`` of
+    its length from the root: a cantilever moves the loaded point by ``F a³ / (3 E I)``, a hinge by ``F a² / K``, so
+    ``K = 3 E I / a`` with ``I = π r⁴ / 4``. The comb's hair hangs at mid-tine (the TCP), hence ``load_at = 0.5``."""
+    for name, v in (("length", length), ("radius", radius), ("young", young), ("load_at", load_at)):
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"tine_hinge_stiffness: {name} must be a finite number > 0, got {v!r}")
+    return 3.0 * young * math.pi * radius**4 / 4.0 / (load_at * length)
+
+
+_COMB = {"rows": 1, "columns": 23, "column_pitch": 0.02, "tine_length": 0.06}
 BRUSH_PRESETS: dict[str, BrushConfig] = {
-    "comb": BrushConfig(rows=1, columns=23, column_pitch=0.02, tine_length=0.06, hinged=False),
+    "comb": BrushConfig(**_COMB, hinged=False),
+    "soft_comb": BrushConfig(
+        **_COMB,
+        hinged=True,
+        stiffness=tine_hinge_stiffness(_COMB["tine_length"], BrushConfig.tine_radius),
+        damping=0.004,  # ζ ≈ 0.75 with the tine's rotor inertia and brush.xml's armature scaled to 60 mm
+    ),
     "paddle": BrushConfig(),
 }
 """Named brushes. ``comb`` (the scenes' default): one row of 23 rigid 60 mm tines at 20 mm (±220 mm), spanning the
@@ -144,7 +175,10 @@ default one-group-deep curtain (``WigConfig.group_rows = 1``, 40 mm group spacin
 through it and a tine between neighbouring groups, so each stroke parts the strands of every pair; 60 mm crosses a
 curtain one group deep with room to spare. ``paddle``: ``assets/brush/brush.xml``'s own 3 × 8 soft 25 mm bristles
 at 6 mm, kept for the wave-1 benchmarks; it pushes whole groups aside and winds neighbouring groups together
-(``docs/detangling.md``)."""
+(``docs/detangling.md``). ``soft_comb``: the comb with nylon tines that bend (a root hinge of
+:func:`tine_hinge_stiffness`, 1.1 N m/rad: 0.03 rad under 1 N at the curtain), like the thesis's soft-bristled brush,
+for studies of bristle compliance: it frees a pair whose wound free ends lock on a rigid tine, but over repeated
+strokes jams occur elsewhere and it combs out no better (``docs/detangling.md``, *Jams, soft tines*)."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from hairbrush_env.assets import load_part
-from hairbrush_env.brush import BrushConfig, brush_spec, get_brush
+from hairbrush_env.brush import NYLON_YOUNG, BrushConfig, brush_spec, get_brush, tine_hinge_stiffness
 
 
 def test_default_config_reproduces_the_xml_brush():
@@ -67,3 +67,27 @@ def test_presets_resolve_by_name():
     assert get_brush("comb").tine_length == pytest.approx(0.06) and not get_brush("comb").hinged
     with pytest.raises(ValueError, match="valid names"):
         get_brush("nope")
+
+
+def test_soft_comb_tine_bends_like_a_nylon_cantilever_at_the_curtain():
+    """A 1 N load at mid-tine (where the hair hangs) moves that point as a clamped nylon rod would: F a³ / (3 E I)."""
+    cfg = get_brush("soft_comb")
+    assert cfg.hinged and cfg.tine_length == get_brush("comb").tine_length
+    model = brush_spec(cfg).compile()
+    model.opt.gravity[:] = 0.0
+    data = mujoco.MjData(model)
+    body = model.body("tine_0_11").id  # the middle tine
+    a = 0.5 * cfg.tine_length  # its centre of mass, where xfrc_applied acts
+    data.xfrc_applied[body, 2] = 1.0  # the hair resisting a downward pull lifts the tine
+    for _ in range(3000):
+        mujoco.mj_step(model, data)
+    theta = float(data.qpos[model.jnt_qposadr[model.joint("tine_0_11").id]])
+    moment_of_area = np.pi * cfg.tine_radius**4 / 4
+    expected = 1.0 * a**3 / (3 * NYLON_YOUNG * moment_of_area)
+    assert abs(a * np.sin(theta)) == pytest.approx(expected, rel=0.02)
+    assert abs(theta) < model.jnt_range[model.joint("tine_0_11").id, 1]  # the load did not reach the stop
+
+
+def test_tine_hinge_stiffness_rejects_bad_input():
+    with pytest.raises(ValueError, match="radius"):
+        tine_hinge_stiffness(0.06, -1.0)
