@@ -58,6 +58,7 @@ def test_unknown_preset_lists_names() -> None:
         ({"rest_splay": 4.0}, "rest_splay"),
         ({"group_rows": 0}, "group_rows"),
         ({"rest_splay": 0.5, "rod_kind": "flex"}, "rest_splay"),
+        ({"self_collision": 1}, "self_collision"),
     ],
 )
 def test_bad_config_names_field(changes: dict, field: str) -> None:
@@ -136,6 +137,18 @@ def test_entanglement_at_rest_equals_ground_truth() -> None:
     mujoco.mj_forward(model, data)
     assert hair.entanglement(model, data, layout) == pytest.approx(layout.n_links, rel=1e-9)
     assert layout.n_links == pytest.approx(np.abs(layout.pair_link).sum())
+
+
+def test_self_collision_lets_a_strand_touch_its_own_segments() -> None:
+    """Off (the default), every non-adjacent segment pair of a strand is excluded from collision; on, none is."""
+    wig = hair.PRESETS["curly"].replace(n_strands=4, n_triples=0)
+    counts = []
+    for on in (False, True):
+        spec = mujoco.MjSpec()
+        hair.add_wig(spec, wig.replace(self_collision=on), parent_body=spec.worldbody)
+        counts.append(spec.compile().nexclude)
+    n = wig.n_edges
+    assert counts == [4 * (n - 1) * (n - 2) // 2, 0]
 
 
 def test_group_rows_sets_the_depth_of_the_curtain() -> None:

@@ -87,6 +87,7 @@ def add_wig(
                 margin=CONTACT_MARGIN,
                 group=HAIR_GEOM_GROUP,
                 kind=cfg.rod_kind,
+                selfcollide=cfg.self_collision,
                 # straight strands have no curl whose axis could move: turning them would only twist the root
                 root_rest_turn=float(cfg.rest_splay) if cfg.curliness > 0 else 0.0,
             ),

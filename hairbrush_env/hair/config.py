@@ -159,6 +159,11 @@ class WigConfig:
         ignore it): ``s`` times the mass and rotational inertia at the same weight, so that taut strands do not sink
         into each other (*Mass scaling* in :mod:`hairbrush_env.hair`). The preparation's shake forces the real mass
         (``density``), not the scaled one.
+    self_collision : bool
+        Contacts between non-adjacent segments of the same strand (:attr:`hairbrush_env.rods.RodSpec.selfcollide`).
+        Off by default: then a strand's own segments can pass through each other, and brushing makes them (curly,
+        seed 0: 5–99 segment pairs on 1–12 strands overlapping by more than half a diameter in five of six full
+        strokes, ``scripts/probe_self_contact.py``; ``docs/detangling.md``, *Strands pass through themselves*).
     """
 
     name: str = "custom"
@@ -187,6 +192,7 @@ class WigConfig:
     rest_splay: float = math.pi / 3
     group_rows: int | None = 1
     mass_scale: float = MASS_SCALE
+    self_collision: bool = False
 
     def __post_init__(self) -> None:
         _require(
@@ -249,6 +255,12 @@ class WigConfig:
         _require(self.min_edges >= 2, "min_edges", "must be >= 2", self.min_edges)
         _require(self.max_edges >= self.min_edges, "max_edges", "must be >= min_edges", self.max_edges)
         _require(self.handedness in (1, -1), "handedness", "must be +1 or -1", self.handedness)
+        _require(
+            isinstance(self.self_collision, bool),
+            "self_collision",
+            "must be True or False",
+            self.self_collision,
+        )
         _require(len(self.rgba) == 4, "rgba", "must have 4 entries", self.rgba)
         _require(
             self.rod_kind in rods.ROD_KINDS, "rod_kind", f"must be one of {rods.ROD_KINDS}", self.rod_kind
