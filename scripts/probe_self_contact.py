@@ -1,8 +1,8 @@
-"""Exploration probe: do strands pass through themselves? (Hair strands have no self-collision: ``RodSpec.selfcollide``
-is off, and the pass-through monitor watches pairs of different strands only.)
+"""Exploration probe: do strands pass through themselves? (By default hair strands have no self-collision,
+``WigConfig.self_collision``, and the pass-through monitor watches pairs of different strands only.)
 
     python scripts/probe_self_contact.py WIG SEED STROKES [WIG_FIELDS_JSON]     # e.g. curly 0 6
-    python scripts/probe_self_contact.py curly 0 6 '{"selfcollide": true}'      # a trial with self-collision
+    python scripts/probe_self_contact.py curly 0 6 '{"self_collision": true}'   # with self-collision
 
 Repeated full strokes (b_l = 1, no abort). After every physics step, the smallest distance between the centerlines
 of any two non-adjacent segments of one strand, as a fraction of the wisp diameter 2 r (the sum of the two radii):
@@ -24,15 +24,7 @@ from hairbrush_env.scene import BrushingSim, SceneConfig
 
 wig_name, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 fields = json.loads(sys.argv[4]) if len(sys.argv) > 4 else {}
-self_collide = bool(fields.pop("selfcollide", False))
 sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig_name].replace(**fields)))
-if self_collide:
-    # the chain builder excludes a strand's non-adjacent segment pairs from collision (as a flex without
-    # self-collision); a signature of 0 (world with world) matches no pair, so this lifts the exclusions
-    hair_bodies = set(sim.hair_bodies.tolist())
-    for e, sig in enumerate(sim.model.exclude_signature):
-        if (int(sig) >> 16) in hair_bodies and (int(sig) & 0xFFFF) in hair_bodies:
-            sim.model.exclude_signature[e] = 0
 sim.reset(seed)
 diameter = 2.0 * sim.wig.strand_radius
 
@@ -69,7 +61,7 @@ def observe(s: BrushingSim) -> None:
 
 
 sim.add_step_observer(observe)
-print(f"{wig_name} seed {seed} selfcollide {self_collide} {fields}: {n_seg} segments a strand", flush=True)
+print(f"{wig_name} seed {seed} {fields}: {n_seg} segments a strand", flush=True)
 for k in range(1, n + 1):
     state.update(min=np.inf, steps=0, triples=set())
     cpu = time.process_time()
