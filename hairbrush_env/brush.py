@@ -66,6 +66,9 @@ class BrushConfig:
         Hinge stiffness [N m/rad] (brush.xml: a 0.05 N tip load on a 25 mm bristle bends it ≈ 3.6°).
     damping : float
         Hinge damping [N m s/rad].
+    deflection_limit : float
+        Largest hinge angle [rad] either way (brush.xml's 0.35 for the paddle's short bristles). Above
+        ``stiffness · deflection_limit`` of moment a hinged tine stops bending and holds like a rigid one.
     density : float
         Tine material density [kg/m³] (nylon).
     """
@@ -79,6 +82,7 @@ class BrushConfig:
     hinged: bool = True
     stiffness: float = 0.02
     damping: float = 3e-4
+    deflection_limit: float = 0.35
     density: float = 1150.0
 
     def __post_init__(self) -> None:
@@ -93,11 +97,16 @@ class BrushConfig:
             "tine_radius",
             "stiffness",
             "damping",
+            "deflection_limit",
             "density",
         ):
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
                 raise ValueError(f"BrushConfig.{name} must be a finite number > 0, got {v!r}")
+        if self.deflection_limit >= 0.5 * math.pi:
+            raise ValueError(
+                f"BrushConfig.deflection_limit must be below pi/2 rad, got {self.deflection_limit!r}"
+            )
         if self.column_pitch <= 2 * self.tine_radius and self.columns > 1:
             raise ValueError(
                 f"BrushConfig.column_pitch must exceed the tine diameter {2 * self.tine_radius:g}, "
@@ -216,6 +225,7 @@ def brush_spec(config: BrushConfig | None = None) -> mujoco.MjSpec:
                 joint = parent.add_joint(bristle, name=name)
                 joint.stiffness = [config.stiffness, 0.0, 0.0]
                 joint.damping = [config.damping, 0.0, 0.0]
+                joint.range = [-config.deflection_limit, config.deflection_limit]
                 # brush.xml's numerical regularization, scaled with the tine's rotor inertia (∝ length²)
                 joint.armature = bristle.joint.armature * (config.tine_length / 0.025) ** 2
                 pos = [0.0, 0.0, 0.0]

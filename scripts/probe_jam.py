@@ -5,7 +5,8 @@
     python scripts/probe_jam.py curly 0 6 '{"brush": {"hinged": true, "stiffness": 1.1, "damping": 0.004},
         "tine_range": 1.0}'                                # the comb with hinged (soft) tines
 
-SCENE_FIELDS_JSON: SceneConfig fields; "brush" may be a dict of BrushConfig fields over the default comb's, and
+SCENE_FIELDS_JSON: SceneConfig fields; "wig" may be a dict of WigConfig fields over WIG's preset (e.g.
+{"wig": {"self_collision": true}}), "brush" a dict of BrushConfig fields over the default comb's, and
 "tine_range" [rad] widens the hinged tines' deflection limit.
 
 TIP_STIFFNESS scales the stiffness (and damping, so the time constants stay) of the hinges at the last vertices of
@@ -31,6 +32,7 @@ import mujoco
 import numpy as np
 
 from hairbrush_env.brush import BRUSH_PRESETS, BrushConfig
+from hairbrush_env.hair import get_wig
 from hairbrush_env.scene import BrushingSim, SceneConfig
 from hairbrush_env.scene_build import SCENE_TINE_PREFIX
 from hairbrush_env.topology.gauss import link_density
@@ -40,9 +42,14 @@ scene_fields = json.loads(sys.argv[4]) if len(sys.argv) > 4 else {}
 tip_scale = [float(v) for v in sys.argv[5].split(",")] if len(sys.argv) > 5 else []
 fields = dict(scene_fields)
 tine_range = fields.pop("tine_range", None)  # hinged tines' deflection limit [rad], overriding brush.xml's
+# "wig": WigConfig fields over the WIG preset's, e.g. {"self_collision": true}
+if isinstance(fields.get("wig"), dict):
+    fields["wig"] = get_wig(wig).replace(**fields["wig"])
+else:
+    fields["wig"] = wig
 if isinstance(fields.get("brush"), dict):
     fields["brush"] = BrushConfig(**{**asdict(BRUSH_PRESETS["comb"]), **fields["brush"]})
-sim = BrushingSim(SceneConfig(wig=wig, **fields))
+sim = BrushingSim(SceneConfig(**fields))
 m = sim.model
 names = list(sim.layout.names)
 n_vertices = sim.wig.n_edges

@@ -55,6 +55,8 @@ def test_custom_brush_sizes_plate_and_tcp_and_rigid_tines_have_no_joints():
         ({"tine_length": -1.0}, "tine_length"),
         ({"column_pitch": 0.002}, "column_pitch"),
         ({"row_pitch": float("nan")}, "row_pitch"),
+        ({"deflection_limit": 0.0}, "deflection_limit"),
+        ({"deflection_limit": 2.0}, "deflection_limit"),
     ],
 )
 def test_bad_brush_configs_name_the_field(kw, name):
@@ -86,6 +88,28 @@ def test_soft_comb_tine_bends_like_a_nylon_cantilever_at_the_curtain():
     expected = 1.0 * a**3 / (3 * NYLON_YOUNG * moment_of_area)
     assert abs(a * np.sin(theta)) == pytest.approx(expected, rel=0.02)
     assert abs(theta) < model.jnt_range[model.joint("tine_0_11").id, 1]  # the load did not reach the stop
+
+
+def test_deflection_limit_is_the_hinge_range_of_every_tine():
+    """The paddle keeps brush.xml's ±0.35 rad; a wider limit lets a loaded tine bend on past it."""
+    paddle = brush_spec(BrushConfig()).compile()
+    assert np.allclose(paddle.jnt_range, [-0.35, 0.35])
+    cfg = BrushConfig(
+        rows=1, columns=2, column_pitch=0.02, tine_length=0.06, stiffness=1.1, deflection_limit=1.2
+    )
+    model = brush_spec(cfg).compile()
+    assert model.njnt == 2 and np.allclose(model.jnt_range, [-1.2, 1.2]) and model.jnt_limited.all()
+    model.opt.gravity[:] = 0.0
+    data = mujoco.MjData(model)
+    body = model.body("tine_0_0").id
+    force, arm = 20.0, 0.5 * cfg.tine_length
+    data.xfrc_applied[body, 2] = force  # lifts mid-tine: ~0.49 rad, past brush.xml's 0.35 rad stop
+    for _ in range(3000):
+        mujoco.mj_step(model, data)
+    theta = abs(float(data.qpos[model.jnt_qposadr[model.joint("tine_0_0").id]]))
+    # static balance of the hinge: K θ = F a cos θ (the vertical load's arm shortens as the tine turns)
+    assert cfg.stiffness * theta == pytest.approx(force * arm * np.cos(theta), rel=0.02)
+    assert 0.35 < theta < 1.2
 
 
 def test_tine_hinge_stiffness_rejects_bad_input():
