@@ -79,12 +79,13 @@ def read_csv_rows(
     ints: Sequence[str] = (),
     bools: Sequence[str] = (),
 ) -> list[dict[str, Any]]:
-    """Rows of a CSV written by :func:`write_csv_rows`, with the named columns converted back."""
+    """Rows of a CSV written by :func:`write_csv_rows`, with the named columns converted back (a named column the
+    file does not have, e.g. one added after it was written, stays absent)."""
     rows = []
     with open(path, newline="") as fh:
         for row in csv.DictReader(fh):
-            row.update({k: float(row[k]) for k in floats})
-            row.update({k: int(row[k]) for k in ints})
-            row.update({k: row[k] == "True" for k in bools})
+            row.update({k: float(row[k]) for k in floats if k in row})
+            row.update({k: int(row[k]) for k in ints if k in row})
+            row.update({k: row[k] == "True" for k in bools if k in row})
             rows.append(row)
     return rows

@@ -8,14 +8,18 @@ per-step sampling found strands 0.36 mm apart. :class:`PassThroughMonitor` there
 * the smallest hair–hair and hair–bristle centerline distances, against half the sum of the two radii — a contact
   that lets two capsules sink half-way into each other has failed;
 * topological crossings of any two strands (not only the entwined pairs): a jump of ≈ 1 of a close pair's open
-  Gauss integral between two steps (:class:`hairbrush_env.topology.proximity.CrossingDetector`).
+  Gauss integral between two steps (:class:`hairbrush_env.topology.proximity.CrossingDetector`);
+* the smallest distance between two non-neighbouring segments of one strand. Strands collide with themselves only
+  with ``WigConfig.self_collision``; without it a curl pressed on a tine can pass through itself (docs/detangling.md,
+  *Strands pass through themselves*). :attr:`PassThroughMonitor.passed` judges pairs of strands and bristles;
+  :attr:`PassThroughMonitor.self_passed` judges each strand against itself.
 """
 
 from __future__ import annotations
 
 import math
 
-from .topology.proximity import Crossing, CrossingDetector, min_distance_to_segments
+from .topology.proximity import Crossing, CrossingDetector, min_distance_to_segments, min_self_distance
 
 __all__ = ["PassThroughMonitor"]
 
@@ -39,7 +43,7 @@ class PassThroughMonitor:
         self.hair_bristle_sum = r + sim.bristle_radius
         self.hair_hair_limit = 0.5 * self.hair_hair_sum
         self.hair_bristle_limit = 0.5 * self.hair_bristle_sum
-        self.hair_hair = self.hair_bristle = math.inf
+        self.hair_hair = self.hair_bristle = self.hair_self = math.inf
         self.steps = 0
         sim.add_step_observer(self)
 
@@ -48,6 +52,7 @@ class PassThroughMonitor:
         self.detector.update(curves, float(sim.data.time))
         self.hair_hair = min(self.hair_hair, self.detector.min_distance)
         self.hair_bristle = min(self.hair_bristle, min_distance_to_segments(curves, sim.bristle_segments()))
+        self.hair_self = min(self.hair_self, float(min_self_distance(curves).min()))
         self.steps += 1
 
     def detach(self) -> None:
@@ -73,6 +78,16 @@ class PassThroughMonitor:
     def hair_bristle_fraction(self) -> float:
         """Smallest hair–bristle centerline distance / sum of the two radii."""
         return self.hair_bristle / self.hair_bristle_sum
+
+    @property
+    def hair_self_fraction(self) -> float:
+        """Smallest distance between two non-neighbouring segments of one strand / the wisp diameter."""
+        return self.hair_self / self.hair_hair_sum
+
+    @property
+    def self_passed(self) -> bool:
+        """No strand came closer to itself than half its diameter (a segment half-way through another)."""
+        return self.hair_self > self.hair_hair_limit
 
     @property
     def passed(self) -> bool:

@@ -17,6 +17,7 @@ import pytest
 
 from hairbrush_env import hair, rods, scene
 from hairbrush_env.pass_through import PassThroughMonitor
+from hairbrush_env.topology.proximity import min_self_distance
 
 BRISTLE_RADIUS = 0.0015
 
@@ -291,9 +292,26 @@ def test_pass_through_limits_follow_the_model(sim: scene.BrushingSim) -> None:
     mon.detach()
     assert mon.hair_hair_limit == pytest.approx(sim.wig.strand_radius)
     assert mon.hair_bristle_limit == pytest.approx(0.5 * (sim.wig.strand_radius + BRISTLE_RADIUS))
-    assert mon.passed  # nothing seen yet
+    assert mon.passed and mon.self_passed  # nothing seen yet
     mon.hair_hair = 0.9 * mon.hair_hair_limit
     assert not mon.passed
+    sim.reset(0)
+    mon(sim)  # one observation of the pre-brushed wig as it hangs: its curls' turns lie apart
+    assert mon.hair_self == pytest.approx(float(min_self_distance(sim.hair_curve_array()).min()))
+    assert mon.hair_self_fraction > 1.0 and mon.self_passed
+    mon.hair_self = 0.9 * mon.hair_hair_limit
+    assert not mon.self_passed
+
+
+@pytest.mark.slow
+def test_self_colliding_strands_do_not_pass_through_themselves() -> None:
+    """With ``WigConfig.self_collision`` a full stroke through curly (seed 0) keeps every strand's non-neighbouring
+    segments more than half a diameter apart (the default's curls passed through themselves in 5 of 6 strokes)."""
+    wig = hair.get_wig("curly").replace(self_collision=True)
+    with scene.BrushingSim(scene.SceneConfig(wig=wig)) as s:
+        mon = _full_stroke_checked(s, 0)
+        _assert_no_pass_through(mon)
+        assert mon.self_passed, mon.hair_self_fraction
 
 
 @pytest.fixture(scope="module")

@@ -38,7 +38,8 @@ __all__ = [
 
 COLUMNS = [
     "wig", "seed", "brush_length", "stroke", "max_force", "entwined", "made", "entanglement", "crossings",
-    "min_hair_hair", "min_hair_bristle", "cpu_s", "sim_s", "steps", "aborted", "diverged", "still_entwined",
+    "min_hair_hair", "min_hair_bristle", "min_self", "cpu_s", "sim_s", "steps", "aborted", "diverged",
+    "still_entwined",
 ]  # fmt: skip
 
 
@@ -57,7 +58,9 @@ def repeated_strokes(
 
     Returns one row per stroke (row 0 is the state before brushing, with ``stroke = 0``): ``max_force`` [N],
     ``entwined`` and ``made`` (``Σ |Lk|``), ``entanglement`` (their sum), ``crossings``, ``min_hair_hair`` and
-    ``min_hair_bristle`` (fractions of the sum of radii, over the stroke's physics steps), ``cpu_s`` (process CPU
+    ``min_hair_bristle`` (fractions of the sum of radii, over the stroke's physics steps), ``min_self`` (the smallest
+    distance between two non-neighbouring segments of one strand, as a fraction of its diameter: below 0.5 a strand
+    passes through itself, which it can without ``WigConfig.self_collision``), ``cpu_s`` (process CPU
     time of the stroke, monitor included), ``sim_s`` (simulated time), ``steps`` (physics steps), ``aborted``,
     ``diverged``, ``still_entwined`` (entwined pairs still wound in their built-in sense,
     :meth:`~hairbrush_env.hair.Entanglement.still_entwined`). ``on_stroke`` is called with each row as it is made
@@ -74,7 +77,8 @@ def repeated_strokes(
     sim.reset(seed)
     rows = [
         dict(stroke=0, max_force=0.0, **_entanglement_columns(sim), crossings=0, min_hair_hair=math.nan,
-             min_hair_bristle=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False, diverged=False)
+             min_hair_bristle=math.nan, min_self=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False,
+             diverged=False)
     ]  # fmt: skip
     if on_stroke is not None:
         on_stroke(rows[0])
@@ -93,6 +97,7 @@ def repeated_strokes(
             crossings=len(mon.crossings) if mon is not None else -1,
             min_hair_hair=mon.hair_hair_fraction if mon is not None else math.nan,
             min_hair_bristle=mon.hair_bristle_fraction if mon is not None else math.nan,
+            min_self=mon.hair_self_fraction if mon is not None else math.nan,
             cpu_s=cpu,
             sim_s=res.sim_time,
             steps=sim.n_steps - steps0,
@@ -125,13 +130,16 @@ def plateau_stroke(max_forces: list[float], tolerance: float = 0.4) -> int | Non
 
 
 def _read(path: Path) -> list[dict[str, Any]]:
-    return read_csv_rows(
+    rows = read_csv_rows(
         path,
         floats=("brush_length", "max_force", "entwined", "made", "entanglement", "min_hair_hair",
-                "min_hair_bristle", "cpu_s", "sim_s"),
+                "min_hair_bristle", "min_self", "cpu_s", "sim_s"),
         ints=("seed", "stroke", "crossings", "steps", "still_entwined"),
         bools=("aborted", "diverged"),
     )  # fmt: skip
+    for row in rows:
+        row.setdefault("min_self", math.nan)  # written before the column existed
+    return rows
 
 
 def run_repeated(
@@ -207,23 +215,25 @@ def _series(rows: Sequence[dict[str, Any]]) -> dict[tuple[str, int], list[dict[s
 
 
 def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
-    """One line per ``(wig, seed)``: forces per stroke, the eq. 3.4 plateau, entanglement left, pass-through."""
+    """One line per ``(wig, seed)``: forces per stroke, the eq. 3.4 plateau, entanglement left, pass-through
+    (between strands: crossings and the smallest hair–hair distance / Σr; within a strand: ``min_self`` / 2r)."""
     lines = [
         "| wig | seed | b_l | F_max per stroke [N] | plateau (eq. 3.4) | Σ|Lk| start | left after each stroke "
-        "| entwined pairs (start → end) | crossings | min hair–hair |",
-        "|---|---:|---:|---|---:|---:|---|---:|---:|---:|",
+        "| entwined pairs (start → end) | crossings | min hair–hair | min self |",
+        "|---|---:|---:|---|---:|---:|---|---:|---:|---:|---:|",
     ]
     for (wig, seed), rs in _series(rows).items():
         e0 = rs[0]["entanglement"]
         forces = [r["max_force"] for r in rs[1:]]
         plateau = plateau_stroke(forces)
         hh = min((r["min_hair_hair"] for r in rs[1:]), default=math.nan)
+        own = min((r.get("min_self", math.nan) for r in rs[1:]), default=math.nan)
         left = " ".join(f"{r['entanglement'] / max(e0, 1e-9):.2f}" for r in rs[1:])
         lines.append(
             f"| {wig} | {seed} | {rs[0]['brush_length']:.2f} | {' '.join(f'{f:.1f}' for f in forces)} | "
             f"{plateau if plateau is not None else '–'} | {e0:.1f} | "
             f"{left} | {rs[0].get('still_entwined', '?')} → {rs[-1].get('still_entwined', '?')} | "
-            f"{sum(r['crossings'] for r in rs[1:])} | {hh:.2f} |"
+            f"{sum(r['crossings'] for r in rs[1:])} | {hh:.2f} | {own:.2f} |"
         )
     return "\n".join(lines) + "\n"
 

@@ -226,6 +226,25 @@ def min_segment_distance(a, b):  # pragma: no cover - compiled
     return best.min()
 
 
+@nb.njit(cache=True)
+def min_self_segment_distance(curves, skip):  # pragma: no cover - compiled
+    """Per polyline of ``(S, V, 3)`` curves, the minimum distance between two of its segments at least ``skip``
+    segments apart (``skip = 2``: every pair but neighbours, which share a vertex)."""
+    s_n = curves.shape[0]
+    n = curves.shape[1] - 1
+    out = np.full(s_n, np.inf)
+    for s in range(s_n):
+        c = curves[s]
+        lo = np.inf
+        for i in range(n - skip):
+            for j in range(i + skip, n):
+                d = _segment_distance(c[i], c[i + 1], c[j], c[j + 1])
+                if d < lo:
+                    lo = d
+        out[s] = lo
+    return out
+
+
 @nb.njit(cache=True, inline="always")
 def _segment_distance(p0, p1, q0, q1):  # pragma: no cover - compiled
     return _segdist_scalar(p0[0], p0[1], p0[2], p1[0], p1[1], p1[2], q0[0], q0[1], q0[2], q1[0], q1[1], q1[2])

@@ -18,6 +18,7 @@ from ._kernels import (
     close_pairs,
     curves_to_segments_distance,
     min_segment_distance,
+    min_self_segment_distance,
     pair_distance_and_link,
 )
 
@@ -26,6 +27,7 @@ __all__ = [
     "CrossingDetector",
     "close_pair_proximity",
     "min_distance_to_segments",
+    "min_self_distance",
     "polyline_distance",
     "segment_distances",
 ]
@@ -72,6 +74,17 @@ def min_distance_to_segments(curves, segments) -> float:
     """Smallest distance between any of the stacked ``curves`` and any of the ``(K, 2, 3)`` ``segments``."""
     segs = np.ascontiguousarray(segments, dtype=float).reshape(-1, 2, 3)
     return float(curves_to_segments_distance(_stack(curves), segs)) if len(segs) else float("inf")
+
+
+def min_self_distance(curves, *, skip: int = 2) -> np.ndarray:
+    """Per polyline, the smallest distance between two of its own segments ``skip`` or more segments apart.
+
+    Neighbouring segments share a vertex, so ``skip`` must be ≥ 2. A strand with no self-collision can pass through
+    itself: this distance then falls towards 0 where one of its segments crosses another.
+    """
+    if not (isinstance(skip, int) and skip >= 2):
+        raise ValueError(f"skip must be an integer >= 2, got {skip!r}")
+    return min_self_segment_distance(_stack(curves), skip)
 
 
 @dataclass(frozen=True)
