@@ -176,6 +176,9 @@ BRUSH_PRESETS: dict[str, BrushConfig] = {
         hinged=True,
         stiffness=tine_hinge_stiffness(_COMB["tine_length"], BrushConfig.tine_radius),
         damping=0.004,  # ζ ≈ 0.75 with the tine's rotor inertia and brush.xml's armature scaled to 60 mm
+        # A nylon tine has no stop: at brush.xml's 0.35 rad it held like a rigid one above 13 N at the curtain, and a
+        # curl wrapped on it jammed the comb at 24 N; 1.2 rad (K·1.2 ≈ 44 N at the curtain) freed it.
+        deflection_limit=1.2,
     ),
     "paddle": BrushConfig(),
 }
@@ -185,9 +188,10 @@ through it and a tine between neighbouring groups, so each stroke parts the stra
 curtain one group deep with room to spare. ``paddle``: ``assets/brush/brush.xml``'s own 3 × 8 soft 25 mm bristles
 at 6 mm, kept for the wave-1 benchmarks; it pushes whole groups aside and winds neighbouring groups together
 (``docs/detangling.md``). ``soft_comb``: the comb with nylon tines that bend (a root hinge of
-:func:`tine_hinge_stiffness`, 1.1 N m/rad: 0.03 rad under 1 N at the curtain), like the thesis's soft-bristled brush,
-for studies of bristle compliance: it frees a pair whose wound free ends lock on a rigid tine, but over repeated
-strokes jams occur elsewhere and it combs out no better (``docs/detangling.md``, *Jams, soft tines*)."""
+:func:`tine_hinge_stiffness`, 1.1 N m/rad: 0.03 rad under 1 N at the curtain, up to 1.2 rad), like the thesis's
+soft-bristled brush, for studies of bristle compliance: it frees a pair whose wound free ends lock on a rigid tine,
+but over repeated strokes jams occur elsewhere and it combs out no better (``docs/detangling.md``, *Jams,
+soft tines*)."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:
