@@ -110,15 +110,15 @@ def check_wig_seeds(wig_seeds: Sequence[int] | None, n_wig_states: int) -> tuple
     return tuple(int(v) for v in seeds)
 
 
-def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float):
-    """The :class:`~hairbrush_env.scene.SceneConfig` of an env (wig, webcam size, load-cell noise)."""
+def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float, brush: Any = "comb"):
+    """The :class:`~hairbrush_env.scene.SceneConfig` of an env (wig, brush, webcam size, load-cell noise)."""
     import dataclasses
 
     from ..scene import SceneConfig
 
     if not (math.isfinite(load_cell_noise) and load_cell_noise >= 0):
         raise ValueError(f"load_cell_noise: must be a finite number >= 0, got {load_cell_noise!r}")
-    base = SceneConfig(wig=wig, width=int(width), height=int(height))
+    base = SceneConfig(wig=wig, brush=brush, width=int(width), height=int(height))
     return dataclasses.replace(
         base, load_cell=dataclasses.replace(base.load_cell, noise_std=float(load_cell_noise))
     )
@@ -128,6 +128,7 @@ OBS_MODES = ("state", "image", "state+image")
 #: Constructor arguments both envs take and :meth:`BrushEnvBase._setup` checks.
 SHARED_ENV_ARGS = (
     "wig",
+    "brush",
     "obs_mode",
     "render_mode",
     "width",
@@ -151,6 +152,7 @@ class BrushEnvBase(gym.Env):
         self,
         *,
         wig: Any,
+        brush: Any,
         obs_mode: str,
         render_mode: str | None,
         width: int,
@@ -163,8 +165,11 @@ class BrushEnvBase(gym.Env):
         wig_seeds: Sequence[int] | None = None,
         state_cache_dir: str | None = None,
     ) -> None:
+        from ..brush import get_brush
         from ..hair import StateCache
         from ..scene import BrushingSim  # deferred: importing the package must stay cheap
+
+        brush = get_brush(brush)  # "brush: unknown preset ..." before anything is built
 
         if obs_mode not in OBS_MODES:
             raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
@@ -193,7 +198,10 @@ class BrushEnvBase(gym.Env):
         cache = StateCache(directory=state_cache_dir)
         self.sims = [
             BrushingSim(
-                make_scene_config(w, width=width, height=height, load_cell_noise=load_cell_noise), cache=cache
+                make_scene_config(
+                    w, brush=brush, width=width, height=height, load_cell_noise=load_cell_noise
+                ),
+                cache=cache,
             )
             for w in wigs
         ]

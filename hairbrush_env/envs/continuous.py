@@ -71,7 +71,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
 
     ## Arguments
-    `wig`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `wig_seeds`,
+    `wig`, `brush`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `wig_seeds`,
     `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in `HairBrush-v0`, plus
     `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
 
@@ -83,6 +83,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         self,
         *,
         wig: Any = "curly",
+        brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,
         width: int = 160,

@@ -105,6 +105,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     |---|---|---|
     | `wig` | `"curly"` | preset name from `hairbrush_env.hair.PRESETS`, a `WigConfig`, or a list of them (each
       reset picks one with the env's RNG: one env, one observation space, several wigs, e.g. for training) |
+    | `brush` | `"comb"` | preset name from `hairbrush_env.brush.BRUSH_PRESETS` (`"comb"`, `"soft_comb"`, `"paddle"`)
+      or a `BrushConfig` |
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
     | `render_mode` | `None` | `"rgb_array"` returns the webcam image |
     | `width`, `height` | 160, 120 | image size in pixels (observation and render) |
@@ -134,6 +136,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         self,
         *,
         wig: Any = "curly",
+        brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,
         width: int = 160,

@@ -169,3 +169,8 @@ def test_reset_options(env):
     assert info["wig_seed"] == seeds[-1]
     with pytest.raises(ValueError, match="options"):
         env.reset(seed=0, options={"abort_force": 5.0})
+
+
+def test_unknown_brush_is_refused_before_anything_is_built():
+    with pytest.raises(ValueError, match="brush: unknown preset 'nylon'"):
+        gym.make("HairBrushContinuous-v0", brush="nylon")

@@ -12,8 +12,10 @@ import pytest
 from gymnasium.utils.env_checker import check_env
 
 import hairbrush_env  # noqa: F401  (registers the envs)
+from hairbrush_env.brush import get_brush
 from hairbrush_env.envs.common import RewardConfig
 from hairbrush_env.envs.stroke import HairBrushEnv
+from hairbrush_env.scene_build import SCENE_TINE_PREFIX
 
 
 @pytest.fixture(scope="module")
@@ -91,6 +93,7 @@ def test_actions_validated(env):
     ("kwargs", "field"),
     [
         ({"wig": "afro-ish"}, "wig"),
+        ({"brush": "nylon"}, "brush"),
         ({"obs_mode": "pixels"}, "obs_mode"),
         ({"force_threshold": -1.0}, "force_threshold"),
         ({"min_brush_length": 1.5}, "min_brush_length"),
@@ -101,6 +104,23 @@ def test_actions_validated(env):
 def test_bad_config_raises(kwargs, field):
     with pytest.raises(ValueError, match=field):
         gym.make("HairBrush-v0", **kwargs)
+
+
+def test_brush_argument_builds_the_scene_with_that_brush(small_wig):
+    """``brush="soft_comb"``: the comb's tines on hinges that bend to ±1.2 rad; the default comb's are rigid."""
+
+    def tine_joints(e: HairBrushEnv) -> list[int]:
+        m = e.sim.model
+        return [j for j in range(m.njnt) if m.joint(j).name.startswith(SCENE_TINE_PREFIX)]
+
+    soft = HairBrushEnv(wig=small_wig, brush="soft_comb")
+    joints = tine_joints(soft)
+    assert len(joints) == get_brush("soft_comb").columns
+    assert np.allclose(soft.sim.model.jnt_range[joints], [-1.2, 1.2])
+    soft.close()
+    rigid = HairBrushEnv(wig=small_wig)
+    assert tine_joints(rigid) == [] and rigid.sim.brush == get_brush("comb")
+    rigid.close()
 
 
 def test_divergence_truncates_without_raising(env):
