@@ -2,12 +2,12 @@
 
     python scripts/probe_jam.py WIG SEED STROKES [SCENE_FIELDS_JSON] [TIP_STIFFNESS]   # e.g. curly 0 6
     python scripts/probe_jam.py curly 0 6 '{}' 0.3,0.1   # a trial taper: last two vertices' hinges x0.3, x0.1
-    python scripts/probe_jam.py curly 0 6 '{"brush": {"hinged": true, "stiffness": 1.1, "damping": 0.004},
-        "tine_range": 1.0}'                                # the comb with hinged (soft) tines
+    python scripts/probe_jam.py curly 0 6 '{"brush": {"hinged": true, "stiffness": 1.1, "damping": 0.004,
+        "deflection_limit": 1.0}}'                         # the comb with hinged (soft) tines
 
 SCENE_FIELDS_JSON: SceneConfig fields; "wig" may be a dict of WigConfig fields over WIG's preset (e.g.
-{"wig": {"self_collision": true}}), "brush" a dict of BrushConfig fields over the default comb's, and
-"tine_range" [rad] widens the hinged tines' deflection limit.
+{"wig": {"self_collision": true}}), "brush" a preset name or a dict of BrushConfig fields over the default comb's
+(``deflection_limit`` [rad]: how far hinged tines bend).
 
 TIP_STIFFNESS scales the stiffness (and damping, so the time constants stay) of the hinges at the last vertices of
 every strand, root side first (a trial of tapered wisp tips, set on the compiled model before the wig is shaken).
@@ -41,7 +41,6 @@ wig, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 scene_fields = json.loads(sys.argv[4]) if len(sys.argv) > 4 else {}
 tip_scale = [float(v) for v in sys.argv[5].split(",")] if len(sys.argv) > 5 else []
 fields = dict(scene_fields)
-tine_range = fields.pop("tine_range", None)  # hinged tines' deflection limit [rad], overriding brush.xml's
 # "wig": WigConfig fields over the WIG preset's, e.g. {"self_collision": true}
 if isinstance(fields.get("wig"), dict):
     fields["wig"] = get_wig(wig).replace(**fields["wig"])
@@ -60,10 +59,6 @@ for name in names:
             j = m.joint(f"{name}_{k}_{label}").id
             m.jnt_stiffness[j] *= factor
             m.dof_damping[m.jnt_dofadr[j]] *= factor
-if tine_range is not None:
-    for j in range(m.njnt):
-        if m.joint(j).name.startswith(SCENE_TINE_PREFIX):
-            m.jnt_range[j] = (-tine_range, tine_range)
 sim.reset(seed)
 tines = {g for g in range(m.ngeom) if m.geom(g).name.startswith(SCENE_TINE_PREFIX)}
 strand_of = np.full(m.ngeom, -1)

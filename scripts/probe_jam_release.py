@@ -1,12 +1,14 @@
 """Exploration probe: the same jam met by the default comb and by a variant brush (docs/detangling.md, *Jams*).
 
-    python scripts/probe_jam_release.py WIG SEED N_BEFORE BRUSH_JSON [TINE_RANGE]
-    python scripts/probe_jam_release.py curly 0 4 '{"hinged": true, "stiffness": 1.1, "damping": 0.004}' 1.0
+    python scripts/probe_jam_release.py WIG SEED N_BEFORE BRUSH_JSON
+    python scripts/probe_jam_release.py curly 0 4 '{"hinged": true, "stiffness": 1.1, "damping": 0.004,
+        "deflection_limit": 1.0}'
 
 Brushes N_BEFORE full strokes (b_l = 1, no abort) with the default comb, then copies the hair's joint state into a
 scene whose comb has the BRUSH_JSON fields (over the default comb's) and brushes the next full stroke from that same
-state with both brushes. TINE_RANGE [rad] widens hinged tines' deflection limit (brush.xml: 0.35). Prints each
-stroke's maximum load-cell force, where in the pull it peaked, the largest tine deflection and the entanglement.
+state with both brushes (``deflection_limit`` [rad]: how far hinged tines bend, brush.xml's 0.35 by default).
+Prints each stroke's maximum load-cell force, where in the pull it peaked, the largest tine deflection and the
+entanglement.
 """
 
 import json
@@ -24,7 +26,6 @@ from hairbrush_env.scene_build import SCENE_TINE_PREFIX
 
 wig, seed, n_before = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 variant = BrushConfig(**{**asdict(BRUSH_PRESETS["comb"]), **json.loads(sys.argv[4])})
-tine_range = float(sys.argv[5]) if len(sys.argv) > 5 else None
 
 
 def tine_joints(m: mujoco.MjModel) -> list[int]:
@@ -59,9 +60,6 @@ for k in range(1, n_before + 1):
     stroke(rigid, f"stroke {k}, default comb")
 
 soft = BrushingSim(SceneConfig(wig=wig, brush=variant))
-if tine_range is not None:
-    for j in tine_joints(soft.model):
-        soft.model.jnt_range[j] = (-tine_range, tine_range)
 soft.reset(seed)
 names = tuple(rigid.layout.names)
 for j in range(rigid.model.njnt):
