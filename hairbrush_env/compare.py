@@ -1,6 +1,7 @@
 """Policy × wig comparison grid (thesis Figs 3.7, 3.8, 3.11 in simulation), used by ``hairbrush compare``.
 
-Every (wig, policy, episode) cell runs one episode on ``HairBrush-v0`` with seed ``seed + episode``, from the
+Every (wig, policy, episode) cell runs one episode on ``HairBrush-<physics>`` (``v0`` by default, ``v1``:
+:mod:`hairbrush_env.physics`; recorded in ``physics.json``) with seed ``seed + episode``, from the
 ``episode``-th pre-brushed state of the wig (cycling through them) — the same seeds and states for every policy, so
 policies meet the same pre-brushed wigs and the episodes of a cell meet distinct ones. Finished rows are appended to
 ``results.csv`` as they complete (atomically rewritten), so an interrupted grid keeps its rows and a rerun skips
@@ -62,10 +63,17 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
 
 
 #: One env per wig and process, built on first use (building a scene takes seconds; episodes reuse it).
-_ENVS: dict[tuple[str, str], Any] = {}
+_ENVS: dict[tuple[str, str, str], Any] = {}
 
 
-def run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: dict[str, Any]) -> dict:
+def run_cell(
+    wig: str,
+    policy_name: str,
+    episode: int,
+    seed: int,
+    env_kwargs: dict[str, Any],
+    env_id: str = "HairBrush-v0",
+) -> dict:
     """One episode of the grid, seeded by its own cell (``seed + episode``): the executor's worker function."""
     import gymnasium as gym
 
@@ -78,9 +86,9 @@ def run_cell(wig: str, policy_name: str, episode: int, seed: int, env_kwargs: di
     # meets the same ones (drawn by the seed, two of three episodes met the same wig)
     env_kwargs = {"wig_seeds": brushing_seeds([wig]), **env_kwargs}
     wig_seeds = tuple(env_kwargs["wig_seeds"])
-    key = (wig, repr(sorted(env_kwargs.items())))
+    key = (env_id, wig, repr(sorted(env_kwargs.items())))
     if key not in _ENVS:
-        _ENVS[key] = gym.make("HairBrush-v0", wig=wig, obs_mode="state+image", **env_kwargs)
+        _ENVS[key] = gym.make(env_id, wig=wig, obs_mode="state+image", **env_kwargs)
     env = _ENVS[key]
     policy = make_policy(policy_name, env)
     log = run_episode(
@@ -121,6 +129,7 @@ def run_grid(
     env_kwargs: dict[str, Any] | None = None,
     executor: ExecutorConfig | None = None,
     progress: bool = True,
+    physics: str = "v0",
 ) -> list[dict[str, Any]]:
     """Run (or resume) the grid; returns all rows and writes ``out/results.csv``, ``summary.md``, plots and the
     per-episode timing and errors ``cells.csv``.
@@ -129,18 +138,22 @@ def run_grid(
     or Ray, each worker building its own envs). A failed episode is reported while the others finish, then raises
     :class:`~hairbrush_env.executor.CellsFailed` naming it; a rerun retries it.
     """
+    from .physics import claim_physics, get_physics
+
     if episodes < 1:
         raise ValueError(f"episodes: must be >= 1, got {episodes}")
+    env_id = f"HairBrush-{get_physics(physics).name}"
     _check_names(wigs, policies)
     executor = executor if executor is not None else ExecutorConfig()
     out = Path(out)
     csv_path = out / "results.csv"
     rows = read_results(csv_path) if csv_path.exists() else []
+    claim_physics(out, physics, resuming=bool(rows))
     done = {(r["wig"], r["policy"], r["episode"]) for r in rows}
     todo = [(w, p, e) for w in wigs for p in policies for e in range(episodes) if (w, p, e) not in done]
     kwargs = dict(env_kwargs or {})
     log = CellLog(out / "cells.csv", executor)
-    cells = [((w, p, e), (w, p, e, seed, kwargs)) for w, p, e in todo]
+    cells = [((w, p, e), (w, p, e, seed, kwargs, env_id)) for w, p, e in todo]
 
     def postfix(o: CellOutcome) -> dict[str, Any]:
         return {"wig": o.value["wig"], "policy": o.value["policy"], "f_max": f"{o.value['max_force']:.1f}"}

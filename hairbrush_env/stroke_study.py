@@ -53,14 +53,16 @@ def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[flo
 _SIMS: dict[str, Any] = {}
 
 
-def stroke_cell(wig: str, b_l: float, speed: float, seed: int) -> dict[str, Any]:
+def stroke_cell(wig: str, b_l: float, speed: float, seed: int, physics: str = "v0") -> dict[str, Any]:
     """One cell: the pre-brushed wig of ``seed``, one stroke without abort, load-cell noise seeded by ``seed``
     (the executor's worker function)."""
-    from .scene import BrushingSim, SceneConfig
+    from .physics import get_physics
+    from .scene import BrushingSim
 
-    if wig not in _SIMS:
-        _SIMS[wig] = BrushingSim(SceneConfig(wig=wig))
-    sim = _SIMS[wig]
+    key = f"{physics}:{wig}"
+    if key not in _SIMS:
+        _SIMS[key] = BrushingSim(get_physics(physics).scene_config(wig))
+    sim = _SIMS[key]
     sim.reset(seed)
     res = sim.stroke(b_l, speed=speed, abort_force=None, rng=np.random.default_rng(seed))
     return {
@@ -90,6 +92,7 @@ def measure_strokes(
     out: str | Path | None = None,
     executor: ExecutorConfig | None = None,
     progress: bool = True,
+    physics: str = "v0",
 ) -> list[dict[str, Any]]:
     """Max force of one stroke for every ``(wig, brush_length, speed, seed)``.
 
@@ -110,6 +113,8 @@ def measure_strokes(
         Where strokes run (default: this process; :mod:`hairbrush_env.executor`).
     progress : bool
         Show a progress bar.
+    physics : str
+        Version of the brushing physics (:mod:`hairbrush_env.physics`; recorded in ``out/physics.json``).
 
     Returns
     -------
@@ -118,7 +123,9 @@ def measure_strokes(
         raises :class:`~hairbrush_env.executor.CellsFailed` naming it.
     """
     from . import hair
+    from .physics import claim_physics, get_physics
 
+    get_physics(physics)
     unknown = [w for w in wigs if w not in hair.PRESETS]
     if unknown or not wigs:
         raise ValueError(f"wigs: unknown preset(s) {unknown!r}; choose from {list(hair.PRESETS)}")
@@ -130,9 +137,11 @@ def measure_strokes(
 
     csv_path = Path(out) / "strokes.csv" if out is not None else None
     rows = read_strokes(csv_path) if csv_path is not None and csv_path.exists() else []
+    if out is not None:
+        claim_physics(out, physics, resuming=bool(rows))
     done = {(r["wig"], r["brush_length"], r["speed"], r["seed"]) for r in rows}
     cells = [
-        ((w, b, v, s), (w, b, v, s))
+        ((w, b, v, s), (w, b, v, s, physics))
         for w in wigs
         for b in lengths
         for v in speed_list

@@ -48,3 +48,16 @@ def executor_from_args(args: argparse.Namespace):
     from ..executor import ExecutorConfig
 
     return ExecutorConfig(workers=args.workers, ray=args.ray)
+
+
+def add_physics_arg(parser: argparse.ArgumentParser) -> None:
+    """``--physics``: the version of the brushing physics (:mod:`hairbrush_env.physics`; v1 = ``HairBrush-v1``)."""
+    from ..physics import PHYSICS
+
+    parser.add_argument(
+        "--physics",
+        choices=list(PHYSICS),
+        default="v0",
+        help="brushing physics: v0 (HairBrush-v0's) or v1 (self-colliding strands, hair-hair friction 0.15, "
+        "soft comb; HairBrush-v1's)",
+    )

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-from . import add_executor_args, add_webcam_args, executor_from_args
+from . import add_executor_args, add_physics_arg, add_webcam_args, executor_from_args
 from .checks import (
     count,
     number,
@@ -32,6 +32,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
             env_kwargs={"width": args.width, "height": args.height},
             executor=executor_from_args(args),
             progress=not args.quiet,
+            physics=args.physics,
         )
     except ValueError as exc:
         raise SystemExit(f"hairbrush compare: {exc}") from exc
@@ -42,7 +43,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
 
 def _add_compare(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
-        "compare", help="run a policy x wig grid on HairBrush-v0 (CSV, Markdown summary, plots)"
+        "compare", help="run a policy x wig grid on HairBrush-v0 or -v1 (CSV, Markdown summary, plots)"
     )
     p.add_argument(
         "--wigs",
@@ -64,6 +65,7 @@ def _add_compare(sub: argparse._SubParsersAction) -> None:
         default="runs/compare",
         help="output directory (resumes an interrupted grid)",
     )
+    add_physics_arg(p)
     add_executor_args(p, workers=1, what="episodes")
     add_webcam_args(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
@@ -82,6 +84,7 @@ def _cmd_strokes(args: argparse.Namespace) -> int:
             out=args.out,
             executor=executor_from_args(args),
             progress=not args.quiet,
+            physics=args.physics,
         )
     except ValueError as exc:
         raise SystemExit(f"hairbrush strokes: {exc}") from exc
@@ -112,6 +115,7 @@ def _add_strokes(sub: argparse._SubParsersAction) -> None:
     p.add_argument(
         "--out", type=output_dir, default="runs/strokes", help="output directory (resumes an interrupted run)"
     )
+    add_physics_arg(p)
     add_executor_args(p, workers=1, what="strokes")
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_strokes)
@@ -128,6 +132,7 @@ def _cmd_repeat(args: argparse.Namespace) -> int:
             brush_length=args.brush_length,
             out=args.out,
             progress=not args.quiet,
+            physics=args.physics,
         )
     except ValueError as exc:
         raise SystemExit(f"hairbrush repeat: {exc}") from exc
@@ -159,6 +164,7 @@ def _add_repeat(sub: argparse._SubParsersAction) -> None:
         default="runs/repeat",
         help="output directory (keeps the complete series of a rerun)",
     )
+    add_physics_arg(p)
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_repeat)
 

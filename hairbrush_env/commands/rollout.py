@@ -106,8 +106,13 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "rollout", help="headless rollout of a policy on a brushing env (recording, video, plot)"
     )
+    from ..envs import ENV_IDS
+
     p.add_argument(
-        "--env", default="HairBrush-v0", choices=["HairBrush-v0", "HairBrushContinuous-v0"], help="env id"
+        "--env",
+        default="HairBrush-v0",
+        choices=list(ENV_IDS),
+        help="env id (v1: self-colliding strands, hair-hair friction 0.15, soft comb; hairbrush_env.physics)",
     )
     p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(wig_choices())}")
     p.add_argument(

@@ -3,31 +3,46 @@
 - ``HairBrush-v0`` — one step per brush stroke (:class:`~hairbrush_env.envs.stroke.HairBrushEnv`);
 - ``HairBrushContinuous-v0`` — 10 Hz brush velocity control
   (:class:`~hairbrush_env.envs.continuous.HairBrushContinuousEnv`).
+- ``HairBrush-v1``, ``HairBrushContinuous-v1`` — the same envs with the v1 physics (:data:`V1_PHYSICS`).
+
+A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
+run, docs/rl.md) are evaluated on the physics they were trained on.
 """
 
 from __future__ import annotations
 
+from ..physics import PHYSICS
 from .common import PAIN_THRESHOLD_N, RewardConfig
 
-__all__ = ["PAIN_THRESHOLD_N", "RewardConfig", "register_envs"]
+__all__ = ["ENV_IDS", "PAIN_THRESHOLD_N", "STROKE_ENV_IDS", "V1_PHYSICS", "RewardConfig", "register_envs"]
 
 MAX_STROKES = 30  # HairBrush-v0 episode limit (strokes)
 MAX_CONTROL_STEPS = 600  # HairBrushContinuous-v0 episode limit (60 s at 10 Hz)
 
+#: What v1 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v1"]`` (self-colliding strands, hair–hair
+#: friction 0.15, the soft comb). Constructor arguments override it (``gymnasium.make("HairBrush-v1", brush="comb")``).
+V1_PHYSICS: dict = PHYSICS["v1"].env_kwargs()
+
+
+#: Every registered env id: (entry point, episode limit, default kwargs).
+ENV_IDS: dict[str, tuple[str, int, dict]] = {
+    "HairBrush-v0": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, {}),
+    "HairBrushContinuous-v0": ("hairbrush_env.envs.continuous:HairBrushContinuousEnv", MAX_CONTROL_STEPS, {}),
+    "HairBrush-v1": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V1_PHYSICS),
+    "HairBrushContinuous-v1": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V1_PHYSICS,
+    ),
+}
+#: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).
+STROKE_ENV_IDS = tuple(k for k, v in ENV_IDS.items() if v[0].endswith(":HairBrushEnv"))
+
 
 def register_envs() -> None:
-    """Register both envs with gymnasium (idempotent)."""
+    """Register every env of :data:`ENV_IDS` with gymnasium (idempotent)."""
     from gymnasium.envs.registration import register, registry
 
-    if "HairBrush-v0" not in registry:
-        register(
-            id="HairBrush-v0",
-            entry_point="hairbrush_env.envs.stroke:HairBrushEnv",
-            max_episode_steps=MAX_STROKES,
-        )
-    if "HairBrushContinuous-v0" not in registry:
-        register(
-            id="HairBrushContinuous-v0",
-            entry_point="hairbrush_env.envs.continuous:HairBrushContinuousEnv",
-            max_episode_steps=MAX_CONTROL_STEPS,
-        )
+    for env_id, (entry_point, limit, kwargs) in ENV_IDS.items():
+        if env_id not in registry:
+            register(id=env_id, entry_point=entry_point, max_episode_steps=limit, kwargs=dict(kwargs))

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, fields
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -124,10 +124,41 @@ def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float, b
     )
 
 
+def apply_wig_fields(wigs: Sequence[Any], wig_fields: Mapping[str, Any] | None) -> list[Any]:
+    """``wigs`` (preset names or WigConfigs) with the WigConfig fields ``wig_fields`` set on every one.
+
+    An env version fixes the hair's contact model this way for every wig it is given (``HairBrush-v1``:
+    self-colliding strands, hair–hair friction 0.15); without ``wig_fields`` the wigs are returned as given.
+    """
+    from ..hair import WigConfig, get_wig
+
+    if wig_fields is None:
+        return list(wigs)
+    if not isinstance(wig_fields, Mapping):
+        raise ValueError(f"wig_fields: expected a mapping of WigConfig fields, got {wig_fields!r}")
+    known = {f.name for f in fields(WigConfig)} - {"name"}
+    unknown = sorted(set(wig_fields) - known)
+    if unknown:
+        raise ValueError(
+            f"wig_fields: unknown WigConfig field(s) {unknown}; valid: {', '.join(sorted(known))}"
+        )
+    out = []
+    for w in [get_wig(w) for w in wigs]:
+        try:
+            out.append(w.replace(**wig_fields))
+        except (
+            TypeError,
+            ValueError,
+        ) as err:  # a WigConfig validation error names the field; say where it came from
+            raise ValueError(f"wig_fields: {err}") from err
+    return out
+
+
 OBS_MODES = ("state", "image", "state+image")
 #: Constructor arguments both envs take and :meth:`BrushEnvBase._setup` checks.
 SHARED_ENV_ARGS = (
     "wig",
+    "wig_fields",
     "brush",
     "obs_mode",
     "render_mode",
@@ -164,6 +195,7 @@ class BrushEnvBase(gym.Env):
         load_cell_noise: float,
         wig_seeds: Sequence[int] | None = None,
         state_cache_dir: str | None = None,
+        wig_fields: Mapping[str, Any] | None = None,
     ) -> None:
         from ..brush import get_brush
         from ..hair import StateCache
@@ -181,6 +213,9 @@ class BrushEnvBase(gym.Env):
         wigs = list(wig) if isinstance(wig, (list, tuple)) else [wig]
         if not wigs:
             raise ValueError("wig: expected a preset name, a WigConfig or a non-empty list of them, got []")
+        wigs = apply_wig_fields(
+            wigs, wig_fields
+        )  # "wig: unknown preset ..." / "wig_fields: ..." before any build
         if not (0.0 <= detangled_fraction < 1.0):
             raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")
         for name, value in (("width", width), ("height", height)):

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -71,18 +71,20 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
 
     ## Arguments
-    `wig`, `brush`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`, `wig_seeds`,
-    `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in `HairBrush-v0`, plus
+    `wig`, `wig_fields`, `brush`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`,
+    `wig_seeds`, `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in `HairBrush-v0`, plus
     `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
 
     ## Version History
     - v0: initial release.
+    - v1: v0 with the v1 physics of `HairBrush-v1` (self-colliding strands, hair–hair friction 0.15, soft comb).
     """
 
     def __init__(
         self,
         *,
         wig: Any = "curly",
+        wig_fields: Mapping[str, Any] | None = None,
         brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -105,6 +105,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     |---|---|---|
     | `wig` | `"curly"` | preset name from `hairbrush_env.hair.PRESETS`, a `WigConfig`, or a list of them (each
       reset picks one with the env's RNG: one env, one observation space, several wigs, e.g. for training) |
+    | `wig_fields` | `None` | `WigConfig` fields set on every wig (e.g. `{"friction": 0.15}`; v1 sets its contact
+      model this way) |
     | `brush` | `"comb"` | preset name from `hairbrush_env.brush.BRUSH_PRESETS` (`"comb"`, `"soft_comb"`, `"paddle"`)
       or a `BrushConfig` |
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
@@ -127,6 +129,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added, and
       the finish rule no longer counts strokes aborted at F_T. Issue #11: insertion and withdrawal went from 0.15 to 0.3
       m/s.
+    - v1 (issue #11): v0 with self-colliding strands, hair–hair friction 0.15 and the soft (nylon) comb
+      (`hairbrush_env.envs.V1_PHYSICS`; docs/envs.md, *Versions*). Same spaces, rewards and episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
@@ -136,6 +140,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         self,
         *,
         wig: Any = "curly",
+        wig_fields: Mapping[str, Any] | None = None,
         brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,

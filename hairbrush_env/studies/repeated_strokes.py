@@ -150,23 +150,25 @@ def run_repeated(
     brush_length: float = 1.0,
     out: str | Path | None = None,
     progress: bool = True,
+    physics: str = "v0",
 ) -> list[dict[str, Any]]:
     """Fig. 3.6(i) for every ``(wig, seed)``: :func:`repeated_strokes` rows with ``wig``, ``seed`` and
     ``brush_length`` added (columns :data:`COLUMNS`). Wigs are preset names or
-    :class:`~hairbrush_env.hair.WigConfig` (keyed by name).
+    :class:`~hairbrush_env.hair.WigConfig` (keyed by name), brushed under the physics version ``physics``
+    (:mod:`hairbrush_env.physics`; recorded in ``out/physics.json``).
 
     With ``out``, ``repeat.csv`` is rewritten atomically after every stroke; a rerun keeps the series that were
     complete and re-runs the others from their pre-brushed wig. ``summary.md`` and ``repeat.png`` follow at the end.
     """
     from tqdm import tqdm
 
-    from .. import hair
-    from ..scene import SceneConfig
+    from ..physics import claim_physics, get_physics
 
     if not wigs:
         raise ValueError("wigs: need at least one wig")
+    version = get_physics(physics)
     try:
-        configs = {c.name: c for c in map(hair.get_wig, wigs)}
+        configs = {c.name: c for c in map(version.wig, wigs)}
     except ValueError as exc:
         raise ValueError(f"wigs: {exc}") from exc
     names = list(configs)
@@ -176,6 +178,8 @@ def run_repeated(
         raise ValueError(f"brush_length: must be in (0, 1], got {brush_length!r}")
     csv_path = Path(out) / "repeat.csv" if out is not None else None
     rows = _read(csv_path) if csv_path is not None and csv_path.exists() else []
+    if out is not None:
+        claim_physics(out, version.name, resuming=bool(rows))
     counts = Counter((r["wig"], r["seed"]) for r in rows if r["brush_length"] == brush_length)
     complete = {key for key, n in counts.items() if n == n_strokes + 1}
     rows = [r for r in rows if (r["wig"], r["seed"]) in complete or r["brush_length"] != brush_length]
@@ -183,7 +187,7 @@ def run_repeated(
     bar = tqdm(total=len(todo) * n_strokes, desc="strokes", unit="stroke", disable=not progress)
     try:
         for wig in dict.fromkeys(w for w, _ in todo):
-            with BrushingSim(SceneConfig(wig=configs[wig])) as sim:
+            with BrushingSim(version.scene_config(configs[wig])) as sim:
                 for _, seed in (t for t in todo if t[0] == wig):
 
                     def record(row: dict[str, Any], wig: str = wig, seed: int = seed) -> None:

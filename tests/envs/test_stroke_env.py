@@ -99,6 +99,8 @@ def test_actions_validated(env):
         ({"min_brush_length": 1.5}, "min_brush_length"),
         ({"n_wig_states": 0}, "n_wig_states"),
         ({"width": 7}, "width"),
+        ({"wig_fields": {"colour": "red"}}, "wig_fields"),
+        ({"wig_fields": {"friction": -0.1}}, "wig_fields"),
     ],
 )
 def test_bad_config_raises(kwargs, field):
@@ -120,6 +122,23 @@ def test_brush_argument_builds_the_scene_with_that_brush(small_wig):
     soft.close()
     rigid = HairBrushEnv(wig=small_wig)
     assert tine_joints(rigid) == [] and rigid.sim.brush == get_brush("comb")
+    rigid.close()
+
+
+def test_v1_brushes_with_the_v1_physics_and_v0_is_unchanged(small_wig):
+    """``HairBrush-v1``: self-colliding strands, hair–hair friction 0.15 on every wig (names and custom configs)
+    and the soft comb; v0 keeps the defaults, and constructor arguments override what v1 sets."""
+    v1 = gym.make("HairBrush-v1", wig=[small_wig, "wavy"])
+    for sim in v1.unwrapped.sims:
+        assert sim.wig.self_collision and sim.wig.friction == pytest.approx(0.15)
+        assert sim.brush == get_brush("soft_comb")
+    assert v1.unwrapped.sims[0].wig.name == small_wig.name and v1.spec.max_episode_steps == 30
+    v1.close()
+    v0 = gym.make("HairBrush-v0", wig=small_wig)
+    assert v0.unwrapped.sim.wig == small_wig and v0.unwrapped.sim.brush == get_brush("comb")
+    v0.close()
+    rigid = gym.make("HairBrush-v1", wig=small_wig, brush="comb")
+    assert rigid.unwrapped.sim.brush == get_brush("comb") and rigid.unwrapped.sim.wig.self_collision
     rigid.close()
 
 

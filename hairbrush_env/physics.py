@@ -1,0 +1,83 @@
+"""Versions of the brushing physics: what ``HairBrush-v1`` and the studies' ``--physics v1`` set.
+
+A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
+trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
+every number measured on v0 stays reproducible. A version is a brush and a set of :class:`~hairbrush_env.hair.WigConfig`
+fields applied to every wig it brushes, presets and custom wigs alike.
+
+- ``v0``: the defaults (rigid comb, strands that do not collide with themselves, hair–hair friction 0.3).
+- ``v1``: strands that collide with themselves (a curl cannot pass through its own turns), hair–hair friction 0.15
+  (conditioned hair) and the comb with nylon tines that bend up to ±1.2 rad (``soft_comb``). With all three,
+  repeated full strokes on coily reproduce Fig. 3.6(i) and the full-stroke force grows with curliness (Fig. 3.7);
+  with the rigid comb the slipperier strands pack onto a tine and jam (docs/detangling.md, *Tines that bend on*).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+
+@dataclass(frozen=True)
+class PhysicsVersion:
+    """A brush preset and the WigConfig fields a version sets on every wig."""
+
+    name: str
+    brush: str = "comb"
+    wig_fields: Mapping[str, Any] = field(default_factory=dict)
+
+    def env_kwargs(self) -> dict[str, Any]:
+        """Constructor arguments of the brushing envs for this version (empty for v0: the envs' defaults)."""
+        out: dict[str, Any] = {}
+        if self.brush != "comb":
+            out["brush"] = self.brush
+        if self.wig_fields:
+            out["wig_fields"] = dict(self.wig_fields)
+        return out
+
+    def wig(self, wig: Any):
+        """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) under this version."""
+        from .hair import get_wig
+
+        config = get_wig(wig)
+        return config.replace(**self.wig_fields) if self.wig_fields else config
+
+    def scene_config(self, wig: Any, **fields: Any):
+        """A :class:`~hairbrush_env.scene.SceneConfig` brushing ``wig`` under this version."""
+        from .scene_build import SceneConfig
+
+        return SceneConfig(wig=self.wig(wig), brush=self.brush, **fields)
+
+
+PHYSICS: Mapping[str, PhysicsVersion] = {
+    "v0": PhysicsVersion("v0"),
+    "v1": PhysicsVersion("v1", brush="soft_comb", wig_fields={"self_collision": True, "friction": 0.15}),
+}
+
+
+def get_physics(name: str | PhysicsVersion) -> PhysicsVersion:
+    """The version called ``name``; ``ValueError`` naming the valid ones otherwise."""
+    if isinstance(name, PhysicsVersion):
+        return name
+    if name not in PHYSICS:
+        raise ValueError(f"physics: unknown version {name!r}; valid: {', '.join(PHYSICS)}")
+    return PHYSICS[name]
+
+
+def claim_physics(out: str | Path, name: str, *, resuming: bool) -> None:
+    """Record the physics version of a study in ``out/physics.json``; refuse to resume (add rows to) a study that
+    ran under another version. Studies written before the file existed ran under v0."""
+    from .io import write_text
+
+    get_physics(name)
+    meta = Path(out) / "physics.json"
+    if meta.exists():
+        had = json.loads(meta.read_text()).get("physics", "v0")
+    else:
+        had = "v0" if resuming else name
+    if had != name:
+        raise ValueError(f"physics: {out} holds results under {had}; got {name!r} (use another --out)")
+    write_text(meta, json.dumps({"physics": name}) + "\n")

@@ -1,0 +1,38 @@
+"""Physics versions (``hairbrush_env.physics``): what v1 sets, and studies that refuse to mix versions."""
+
+from __future__ import annotations
+
+import pytest
+
+from hairbrush_env.brush import get_brush
+from hairbrush_env.envs import ENV_IDS, V1_PHYSICS
+from hairbrush_env.hair import get_wig
+from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
+
+
+def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
+    v0, v1 = get_physics("v0"), get_physics("v1")
+    assert v0.wig("curly") == get_wig("curly") and v0.env_kwargs() == {}
+    assert v0.scene_config("curly").brush == get_brush("comb")
+    custom = get_wig("coily").replace(name="mine", length=0.2)
+    w = v1.wig(custom)
+    assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
+    assert v1.scene_config("curly").brush == get_brush("soft_comb")
+    assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
+    assert set(PHYSICS) == {"v0", "v1"}
+
+
+def test_unknown_version_is_refused() -> None:
+    with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1"):
+        get_physics("v9")
+
+
+def test_a_study_directory_keeps_one_version(tmp_path) -> None:
+    claim_physics(tmp_path, "v1", resuming=False)
+    claim_physics(tmp_path, "v1", resuming=True)  # resuming under the same version is fine
+    with pytest.raises(ValueError, match="holds results under v1; got 'v0'"):
+        claim_physics(tmp_path, "v0", resuming=True)
+    old = tmp_path / "old"
+    old.mkdir()
+    with pytest.raises(ValueError, match="holds results under v0"):  # written before physics.json existed
+        claim_physics(old, "v1", resuming=True)
