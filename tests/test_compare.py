@@ -129,7 +129,9 @@ def test_a_grid_runs_on_the_env_of_its_physics_version_and_never_mixes_them(tmp_
     """``physics="v1"`` runs every cell on HairBrush-v1 (recorded in physics.json); resuming that grid under v0
     is refused before anything runs."""
     made = []
-    monkeypatch.setattr(compare, "run_cell", lambda *args: made.append(args[-1]) or _row("curly", "naive", 0, 3.0))
+    monkeypatch.setattr(
+        compare, "run_cell", lambda *args: made.append(args[-1]) or _row("curly", "naive", 0, 3.0)
+    )
     compare.run_grid(["curly"], ["naive"], episodes=1, seed=0, out=tmp_path, progress=False, physics="v1")
     assert made == ["HairBrush-v1"]
     with pytest.raises(ValueError, match="holds results under v1"):
