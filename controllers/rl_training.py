@@ -163,14 +163,15 @@ def _vec_env(env_id, worker_wigs, seed, env_kwargs, vec_cls, monitor_dir, monito
 
     def maker(rank: int):
         def make():
-            import gymnasium as gym
             from stable_baselines3.common.monitor import Monitor
+
+            from hairbrush_env.envs import make_version
 
             if multiprocessing.parent_process() is not None:
                 # a worker process: Ctrl-C is the trainer's to handle (it finishes the step and checkpoints)
                 signal.signal(signal.SIGINT, signal.SIG_IGN)
             wigs = worker_wigs[rank]
-            env = gym.make(env_id, **{**env_kwargs, "wig": wigs[0] if len(wigs) == 1 else list(wigs)})
+            env = make_version(env_id, **{**env_kwargs, "wig": wigs[0] if len(wigs) == 1 else list(wigs)})
             path = None if monitor_dir is None else str(Path(monitor_dir) / f"{monitor_prefix}-{rank}")
             return Monitor(env, filename=path, info_keywords=MONITOR_INFO)
 

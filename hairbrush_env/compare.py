@@ -75,8 +75,7 @@ def run_cell(
     env_id: str = "HairBrush-v0",
 ) -> dict:
     """One episode of the grid, seeded by its own cell (``seed + episode``): the executor's worker function."""
-    import gymnasium as gym
-
+    from .envs import make_version
     from .hair import brushing_seeds
     from .policies import make_policy
     from .rollout import run_episode
@@ -88,7 +87,7 @@ def run_cell(
     wig_seeds = tuple(env_kwargs["wig_seeds"])
     key = (env_id, wig, repr(sorted(env_kwargs.items())))
     if key not in _ENVS:
-        _ENVS[key] = gym.make(env_id, wig=wig, obs_mode="state+image", **env_kwargs)
+        _ENVS[key] = make_version(env_id, wig=wig, obs_mode="state+image", **env_kwargs)
     env = _ENVS[key]
     policy = make_policy(policy_name, env)
     log = run_episode(

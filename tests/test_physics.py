@@ -36,3 +36,23 @@ def test_a_study_directory_keeps_one_version(tmp_path) -> None:
     old.mkdir()
     with pytest.raises(ValueError, match="holds results under v0"):  # written before physics.json existed
         claim_physics(old, "v1", resuming=True)
+
+
+def test_naming_v0_on_purpose_skips_gymnasium_upgrade_warning() -> None:
+    """``make_version`` (used where a version is chosen by flag or by the agent's training env) builds v0 without
+    gymnasium's "out of date" warning; a plain ``gymnasium.make`` still shows it."""
+    import warnings
+
+    import gymnasium as gym
+
+    from hairbrush_env.envs import make_version
+
+    wig = get_wig("curly").replace(name="test_small", n_strands=6, n_triples=0, length=0.12)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        make_version("HairBrush-v0", wig=wig).close()
+    assert not [w for w in caught if "out of date" in str(w.message)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        gym.make("HairBrush-v0", wig=wig).close()
+    assert [w for w in caught if "out of date" in str(w.message)]

@@ -9,16 +9,16 @@ from .checks import count, output_file, policy_choices, policy_name, seed, wig_c
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
-    import gymnasium as gym
     from tqdm import tqdm
 
+    from ..envs import make_version
     from ..io import write_json
     from ..policies import make_policy
     from ..rollout import run_episode
     from ..viz import EpisodeRecorder, VideoWriter, plot_rollout
 
     try:
-        env = gym.make(
+        env = make_version(
             args.env,
             wig=args.wig,
             obs_mode=args.obs_mode,

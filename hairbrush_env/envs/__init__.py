@@ -14,7 +14,15 @@ from __future__ import annotations
 from ..physics import PHYSICS
 from .common import PAIN_THRESHOLD_N, RewardConfig
 
-__all__ = ["ENV_IDS", "PAIN_THRESHOLD_N", "STROKE_ENV_IDS", "V1_PHYSICS", "RewardConfig", "register_envs"]
+__all__ = [
+    "ENV_IDS",
+    "PAIN_THRESHOLD_N",
+    "STROKE_ENV_IDS",
+    "V1_PHYSICS",
+    "RewardConfig",
+    "make_version",
+    "register_envs",
+]
 
 MAX_STROKES = 30  # HairBrush-v0 episode limit (strokes)
 MAX_CONTROL_STEPS = 600  # HairBrushContinuous-v0 episode limit (60 s at 10 Hz)
@@ -46,3 +54,18 @@ def register_envs() -> None:
     for env_id, (entry_point, limit, kwargs) in ENV_IDS.items():
         if env_id not in registry:
             register(id=env_id, entry_point=entry_point, max_episode_steps=limit, kwargs=dict(kwargs))
+
+
+def make_version(env_id: str, **kwargs):
+    """``gymnasium.make(env_id, **kwargs)`` without gymnasium's "out of date, consider upgrading" warning for v0.
+
+    For callers that name a version on purpose (``--physics v0``, an agent evaluated on the physics it was trained
+    on); a user's own ``gymnasium.make("HairBrush-v0")`` still gets the warning.
+    """
+    import warnings
+
+    import gymnasium as gym
+
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=r".*is out of date\. You should consider upgrading")
+        return gym.make(env_id, **kwargs)
