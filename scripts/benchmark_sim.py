@@ -16,7 +16,8 @@ Sections (each prints a markdown table; every row of a table comes from this one
 
 Cases: ``chain (default)`` (the default wig and comb), ``flex wave 1`` (the first release's wig and scene,
 ``scene.wave1_scene``: DER flex, 5 edges per curl turn, ≤ 16 edges, κ = 50, compact lattice, paddle brush, short pull)
-and ``chain, wave-1 wig`` (the same wig and scene as chains: the like-for-like comparison of strand models).
+and ``chain, wave-1 wig`` (the same wig and scene as chains: the like-for-like comparison of strand models);
+``pull_through`` adds ``chain, v1 physics`` (``HairBrush-v1``'s self-colliding strands, friction 0.15, soft comb).
 Single-thread physics costs use CPU time (``time.process_time``).
 """
 
@@ -33,6 +34,7 @@ import numpy as np
 from hairbrush_env import hair, rods, scene
 from hairbrush_env.brush import get_brush
 from hairbrush_env.pass_through import PassThroughMonitor
+from hairbrush_env.physics import PHYSICS
 from hairbrush_env.studies import rod_validation
 
 
@@ -290,10 +292,18 @@ def section_force_table(args: argparse.Namespace) -> None:
 
 
 def section_pull_through(args: argparse.Namespace) -> None:
-    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb against the wave-1 flex wig and scene, seeds
-    7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1 physics against the
+    wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
     seeds = (7,) if args.quick else (7, 11)
-    cases = list(wig_cases(hair.PRESETS[hair.DEFAULT_WIG]).items())[::-1]  # flex first: the reference
+    base = hair.PRESETS[hair.DEFAULT_WIG]
+    cases = list(wig_cases(base).items())[::-1]  # flex first: the reference
+    v1 = PHYSICS[
+        "v1"
+    ]  # HairBrush-v1: self-colliding strands, friction 0.15, soft comb (widened like the default)
+    soft = dataclasses.replace(
+        get_brush(v1.brush), columns=max(get_brush(v1.brush).columns, 2 * base.n_groups + 1)
+    )
+    cases.append(("chain, v1 physics", scene.SceneConfig(wig=v1.wig(base), brush=soft)))
     print(
         f"\n## Pull-through stroke through '{hair.DEFAULT_WIG}', b_l = 1, no abort, seeds {seeds}, CPU time\n"
     )
