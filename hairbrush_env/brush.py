@@ -71,6 +71,9 @@ class BrushConfig:
         ``stiffness · deflection_limit`` of moment a hinged tine stops bending and holds like a rigid one.
     density : float
         Tine material density [kg/m³] (nylon).
+    friction : float
+        Sliding friction coefficient of the tines (brush.xml: 0.3). MuJoCo uses the larger of two geoms'
+        coefficients, so hair slides on a tine with ``max(friction, WigConfig.friction)``.
     """
 
     rows: int = 3
@@ -84,6 +87,7 @@ class BrushConfig:
     damping: float = 3e-4
     deflection_limit: float = 0.35
     density: float = 1150.0
+    friction: float = 0.3
 
     def __post_init__(self) -> None:
         for name in ("rows", "columns"):
@@ -99,6 +103,7 @@ class BrushConfig:
             "damping",
             "deflection_limit",
             "density",
+            "friction",
         ):
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
@@ -237,4 +242,5 @@ def brush_spec(config: BrushConfig | None = None) -> mujoco.MjSpec:
             geom.size = [config.tine_radius, 0.0, 0.0]
             geom.fromto = [pos[0], pos[1], pos[2], pos[0] + config.tine_length, pos[1], pos[2]]
             geom.density = config.density
+            geom.friction = [config.friction, *bristle.geom.friction[1:]]
     return spec

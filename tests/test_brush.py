@@ -7,7 +7,14 @@ import numpy as np
 import pytest
 
 from hairbrush_env.assets import load_part
-from hairbrush_env.brush import NYLON_YOUNG, BrushConfig, brush_spec, get_brush, tine_hinge_stiffness
+from hairbrush_env.brush import (
+    NYLON_YOUNG,
+    TINE_PREFIX,
+    BrushConfig,
+    brush_spec,
+    get_brush,
+    tine_hinge_stiffness,
+)
 
 
 def test_default_config_reproduces_the_xml_brush():
@@ -57,11 +64,21 @@ def test_custom_brush_sizes_plate_and_tcp_and_rigid_tines_have_no_joints():
         ({"row_pitch": float("nan")}, "row_pitch"),
         ({"deflection_limit": 0.0}, "deflection_limit"),
         ({"deflection_limit": 2.0}, "deflection_limit"),
+        ({"friction": -0.1}, "friction"),
     ],
 )
 def test_bad_brush_configs_name_the_field(kw, name):
     with pytest.raises(ValueError, match=name):
         BrushConfig(**kw)
+
+
+def test_friction_is_every_tine_geoms_sliding_friction():
+    """``BrushConfig.friction`` sets the tines' sliding coefficient (default: brush.xml's 0.3, checked above);
+    torsional and rolling friction stay brush.xml's."""
+    m = brush_spec(BrushConfig(friction=0.12)).compile()
+    tines = [i for i in range(m.ngeom) if m.geom(i).name.startswith(TINE_PREFIX)]
+    assert len(tines) == BrushConfig().rows * BrushConfig().columns
+    np.testing.assert_allclose(m.geom_friction[tines], [[0.12, 0.005, 0.0001]] * len(tines))
 
 
 def test_presets_resolve_by_name():
