@@ -1,7 +1,8 @@
 """Exploration probe: repeated pull-through strokes with a custom wig and brush (docs/detangling.md).
 
     python scripts/probe_detangle.py NAME '{"wig": {"base": "curly", "cohesion": 12.5, ...WigConfig fields},
-        "brush": "comb" or {...BrushConfig fields}, "scene": {...SceneConfig fields},
+        "brush": "comb" or {...BrushConfig fields} or {"preset": "soft_comb", ...fields changed},
+        "scene": {...SceneConfig fields},
         "strokes": 6, "seed": 0, "b_l": 1.0, "y": 0.0 or [y1, y2, ...], "iterations": 50}'
 
 "y": the brush's sideways offset [m], or offsets that the strokes cycle through. "iterations": the contact solver's
@@ -10,6 +11,7 @@ iteration cap (default ``rods.CHAIN_SOLVER_ITERATIONS``).
 Writes runs/probe/NAME.jsonl, one line per stroke (hairbrush_env.studies.repeated_strokes rows).
 """
 
+import dataclasses
 import json
 import os
 import sys
@@ -17,7 +19,7 @@ import time
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 from hairbrush_env import hair
-from hairbrush_env.brush import BrushConfig
+from hairbrush_env.brush import BrushConfig, get_brush
 from hairbrush_env.scene import BrushingSim, SceneConfig
 from hairbrush_env.studies.repeated_strokes import repeated_strokes
 
@@ -28,7 +30,12 @@ if "cohesion" in w:
     w["young"] = hair.wisp_young(w.get("strand_radius", base.strand_radius), cohesion=w.pop("cohesion"))
 wig = base.replace(**w)
 b = cfg.get("brush", "comb")
-brush = b if isinstance(b, str) else BrushConfig(**b)  # a preset name (the scene default "comb") or fields
+if isinstance(b, str):  # a preset name (the scene default "comb")
+    brush = b
+elif "preset" in b:  # a preset with some fields changed: {"preset": "soft_comb", "friction": 0.15}
+    brush = dataclasses.replace(get_brush(b["preset"]), **{k: v for k, v in b.items() if k != "preset"})
+else:
+    brush = BrushConfig(**b)
 sc = SceneConfig(wig=wig, brush=brush, **cfg.get("scene", {}))
 t0 = time.process_time()
 sim = BrushingSim(sc)

@@ -4,8 +4,10 @@
     PATCH='{"solimp": [0.99, 0.999, 1e-4, 0.5, 2], "armature": 1.0}' \\
         python scripts/probe_patched.py scripts/probe_detangle.py NAME '{"wig": {"mass_scale": 1}, "strokes": 3}'
 
-PATCH keys: ``solimp`` / ``solref`` (``hair.CONTACT_SOLIMP`` / ``CONTACT_SOLREF``, hair–hair and tool contacts) and
-``armature`` (``rods.chain._ARMATURE``, in units of the segment's ``m ℓ²/3``).
+PATCH keys: ``solimp`` / ``solref`` (``hair.CONTACT_SOLIMP`` / ``CONTACT_SOLREF``, hair–hair and tool contacts),
+``armature`` (``rods.chain._ARMATURE``, in units of the segment's ``m ℓ²/3``) and ``fluid_density`` /
+``fluid_viscosity`` (``mjOption.density`` / ``viscosity`` of every ``BrushingSim``: MuJoCo's inertia-box drag, set
+after the pre-brushed states are looked up, so they are shaken without it).
 """
 
 import json
@@ -20,6 +22,7 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import hairbrush_env.hair as hair_pkg
 import hairbrush_env.hair.build as hair_build
 import hairbrush_env.rods.chain as chain
+import hairbrush_env.scene as scene
 
 patch = json.loads(os.environ.get("PATCH", "{}"))
 if "solimp" in patch:
@@ -28,6 +31,15 @@ if "solref" in patch:
     hair_build.CONTACT_SOLREF = hair_pkg.CONTACT_SOLREF = tuple(patch["solref"])
 if "armature" in patch:
     chain._ARMATURE = float(patch["armature"])
+if "fluid_density" in patch or "fluid_viscosity" in patch:
+    _init = scene.BrushingSim.__init__
+
+    def _init_with_fluid(self, *args, **kwargs):
+        _init(self, *args, **kwargs)
+        self.model.opt.density = float(patch.get("fluid_density", 0.0))
+        self.model.opt.viscosity = float(patch.get("fluid_viscosity", 0.0))
+
+    scene.BrushingSim.__init__ = _init_with_fluid
 script = sys.argv[1]
 sys.argv = sys.argv[1:]
 runpy.run_path(script, run_name="__main__")

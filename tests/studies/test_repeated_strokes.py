@@ -162,11 +162,27 @@ def coily_six_strokes_v1() -> dict[int, list[dict]]:
 @pytest.mark.slow
 def test_fig_3_6_coily_under_v1_physics(coily_six_strokes_v1):
     """Fig. 3.6(i) under ``HairBrush-v1``'s physics (self-colliding strands, friction 0.15, soft comb), coily, seeds
-    0–2: the first full stroke reads the most and above F_T (measured 11.4 / 11.4 / 12.0 N, later strokes
-    4.1–7.8 N), six strokes leave ≤ 30 % of the entanglement (0.27 / 0.29 / 0.22), and no strand crosses another or
-    comes closer than half its diameter to itself (min 0.68; ``hairbrush repeat --physics v1 --wigs coily``)."""
+    0–2 (``hairbrush repeat --physics v1 --wigs coily``): the first full stroke reads above F_T (measured 11.1 / 11.3
+    / 11.5 N) and the second falls (6.2 / 4.4 / 4.5 N), six strokes leave ≤ 30 % of the entanglement (0.24 / 0.26 /
+    0.28), and no strand crosses another or comes closer than half its diameter to itself (min 0.95)."""
     for rows in coily_six_strokes_v1.values():
         forces = [r["max_force"] for r in rows[1:]]
-        assert forces[0] >= 10.0 and max(forces[1:]) < forces[0], forces
+        assert forces[0] >= 10.0 and forces[1] < forces[0], forces
         assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
         assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="coily seed 2 under v1 jams in its fifth stroke (11.5 4.5 8.4 6.8 14.4 7.4 N) and never meets eq. 3.4; "
+    "seeds 0 and 1 plateau (docs/detangling.md, *HairBrush-v1*)",
+)
+def test_fig_3_6_coily_under_v1_force_falls_and_plateaus(coily_six_strokes_v1):
+    """Fig. 3.6(i) under v1: every later stroke reads less than the first, and eq. 3.4 is met within six strokes,
+    on every coily seed."""
+    for rows in coily_six_strokes_v1.values():
+        forces = [r["max_force"] for r in rows[1:]]
+        assert max(forces[1:]) < forces[0], forces
+        assert plateau_stroke(forces) is not None, forces
