@@ -8,8 +8,9 @@ fields applied to every wig it brushes, presets and custom wigs alike.
 - ``v0``: the defaults (rigid comb, strands that do not collide with themselves, hair–hair friction 0.3).
 - ``v1``: strands that collide with themselves (a curl cannot pass through its own turns), hair–hair friction 0.15
   (conditioned hair) and the comb with nylon tines that bend up to ±1.2 rad (``soft_comb``). With all three,
-  repeated full strokes on coily reproduce Fig. 3.6(i) and the full-stroke force grows with curliness (Fig. 3.7);
-  with the rigid comb the slipperier strands pack onto a tine and jam (docs/detangling.md, *Tines that bend on*).
+  repeated full strokes on coily read above F_T first and comb out to ≤ 30 % (Fig. 3.6(i)) and the full-stroke
+  force grows with curliness (Fig. 3.7); with the rigid comb the slipperier strands pack onto a tine and jam
+  (docs/detangling.md, *Tines that bend on* and *HairBrush-v1*).
 """
 
 from __future__ import annotations
