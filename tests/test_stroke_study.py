@@ -84,3 +84,49 @@ def test_speed_changes_max_force_little(tmp_path) -> None:
     for wig in ("straight", "curly"):
         slow, fast = table[(wig, 0.05)], table[(wig, 0.2)]
         assert abs(slow - fast) <= max(1.0, 0.25 * 0.5 * (slow + fast)), (wig, slow, fast)
+
+
+def _mean_force(rows: list[dict]) -> dict[tuple[str, float], float]:
+    assert not any(r["diverged"] for r in rows)
+    return {(e["wig"], e["brush_length"]): e["mean"] for e in stroke_study.summarize(rows)}
+
+
+def test_fig_3_7_under_v1_reduced() -> None:
+    """Figs 3.6(ii) and 3.7 under ``HairBrush-v1``'s physics, reduced (seed 0): straight hair barely loads the soft
+    comb (measured 0.0 N), and curly's full stroke reads more than its third (9.6 against 4.3 N) and more than
+    straight's."""
+    t = _mean_force(
+        stroke_study.measure_strokes(
+            ["straight", "curly"], brush_lengths=[0.33, 1.0], seeds=[0], progress=False, physics="v1"
+        )
+    )
+    assert t[("straight", 1.0)] < 0.5
+    assert t[("curly", 0.33)] < t[("curly", 1.0)]
+    assert t[("curly", 1.0)] > t[("straight", 1.0)] + 2.0
+
+
+@pytest.mark.slow
+def test_fig_3_7_under_v1() -> None:
+    """Fig. 3.7 under v1, mean max force over seeds 0–2, no abort (``hairbrush strokes --physics v1 --wigs all
+    --brush-lengths 0.33,0.67,1 --seeds 3``): the force grows with b_l on every curled preset (Fig. 3.6(ii)), and at
+    b_l = 1 with curliness, straight staying well below F_T and the curliest full stroke above it (measured 0.02 <
+    4.82 < 5.30 < 9.40 < 10.92 < 11.29 N)."""
+    from hairbrush_env.executor import ExecutorConfig
+    from hairbrush_env.hair import PRESETS
+    from hairbrush_env.scene import PAIN_THRESHOLD
+
+    t = _mean_force(
+        stroke_study.measure_strokes(
+            list(PRESETS),
+            brush_lengths=[0.33, 0.67, 1.0],
+            seeds=[0, 1, 2],
+            executor=ExecutorConfig(workers=2),
+            progress=False,
+            physics="v1",
+        )
+    )
+    for name in list(PRESETS)[1:]:
+        assert t[(name, 0.33)] < t[(name, 0.67)] < t[(name, 1.0)], name
+    full = np.array([t[(name, 1.0)] for name in PRESETS])
+    assert np.all(np.diff(full) > 0), full
+    assert full[0] < 0.5 and full[-1] > PAIN_THRESHOLD, full
