@@ -7,7 +7,7 @@ import math
 import pytest
 
 from hairbrush_env.hair import get_wig
-from hairbrush_env.scene import BrushingSim, SceneConfig
+from hairbrush_env.scene import PAIN_THRESHOLD, BrushingSim, SceneConfig
 from hairbrush_env.studies.repeated_strokes import plateau_stroke, repeated_strokes
 
 
@@ -97,6 +97,15 @@ def test_fig_3_6_coily_force_falls_from_the_first_stroke(coily_six_strokes):
         assert max(forces[1:]) < forces[0], forces
 
 
+def _assert_falls_from_the_first_and_plateaus(series: dict[int, list[dict]]) -> None:
+    """Fig. 3.6(i)'s shape on every series: every later stroke reads less than the first, and eq. 3.4
+    (|Δf_max| < 0.4 N) is met within the series."""
+    for rows in series.values():
+        forces = [r["max_force"] for r in rows[1:]]
+        assert max(forces[1:]) < forces[0], forces
+        assert plateau_stroke(forces) is not None, forces
+
+
 @pytest.mark.slow
 @pytest.mark.xfail(
     strict=True,
@@ -108,10 +117,7 @@ def test_fig_3_6_coily_force_falls_from_the_first_stroke(coily_six_strokes):
 def test_fig_3_6_curly_force_falls_and_plateaus(curly_six_strokes):
     """Fig. 3.6(i): every later stroke reads less than the first, and eq. 3.4 (|Δf_max| < 0.4 N) is met within six
     full strokes, on every curly seed."""
-    for rows in curly_six_strokes.values():
-        forces = [r["max_force"] for r in rows[1:]]
-        assert max(forces[1:]) < forces[0], forces
-        assert plateau_stroke(forces) is not None, forces
+    _assert_falls_from_the_first_and_plateaus(curly_six_strokes)
 
 
 def test_run_repeated_writes_resumable_series(tmp_path):
@@ -167,7 +173,7 @@ def test_fig_3_6_coily_under_v1_physics(coily_six_strokes_v1):
     0.28), and no strand crosses another or comes closer than half its diameter to itself (min 0.95)."""
     for rows in coily_six_strokes_v1.values():
         forces = [r["max_force"] for r in rows[1:]]
-        assert forces[0] >= 10.0 and forces[1] < forces[0], forces
+        assert forces[0] >= PAIN_THRESHOLD and forces[1] < forces[0], forces
         assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
         assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
 
@@ -182,7 +188,4 @@ def test_fig_3_6_coily_under_v1_physics(coily_six_strokes_v1):
 def test_fig_3_6_coily_under_v1_force_falls_and_plateaus(coily_six_strokes_v1):
     """Fig. 3.6(i) under v1: every later stroke reads less than the first, and eq. 3.4 is met within six strokes,
     on every coily seed."""
-    for rows in coily_six_strokes_v1.values():
-        forces = [r["max_force"] for r in rows[1:]]
-        assert max(forces[1:]) < forces[0], forces
-        assert plateau_stroke(forces) is not None, forces
+    _assert_falls_from_the_first_and_plateaus(coily_six_strokes_v1)
