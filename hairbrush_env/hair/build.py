@@ -77,6 +77,7 @@ def add_wig(
                 density=cfg.density,
                 mass_scale=cfg.mass_scale if cfg.rod_kind == "chain" else 1.0,
                 damping=cfg.damping,
+                quadratic_damping=cfg.quadratic_damping,
                 friction=cfg.friction,
                 rgba=cfg.rgba,
                 contype=contype,

@@ -111,6 +111,9 @@ class WigConfig:
         Mass density [kg/m³] (keratin ≈ 1300).
     damping : float
         Rayleigh damping of bending/torsion [s].
+    quadratic_damping : float
+        Quadratic damping of bending/torsion [s²] (chain strands; :class:`hairbrush_env.rods.RodSpec`): a hinge
+        turning at ω feels ``−quadratic_damping · k · ω|ω|``. Damps a curl whipping off a tine, barely a pull.
     friction : float
         Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
     edges_per_turn : int
@@ -176,6 +179,7 @@ class WigConfig:
     young: float | None = None
     density: float = 1300.0
     damping: float = 0.02
+    quadratic_damping: float = 0.0
     friction: float = 0.3
     edges_per_turn: int = 8
     min_edges: int = 12
@@ -205,6 +209,7 @@ class WigConfig:
             "strand_radius",
             "density",
             "damping",
+            "quadratic_damping",
             "friction",
             "root_gap",
             "min_spacing",
@@ -224,7 +229,15 @@ class WigConfig:
         _require(
             _finite(self.mass_scale) and self.mass_scale >= 1.0, "mass_scale", "must be >= 1", self.mass_scale
         )
-        for f in ("damping", "friction", "root_gap", "shake_seconds", "settle_seconds", "shake_accel"):
+        for f in (
+            "damping",
+            "quadratic_damping",
+            "friction",
+            "root_gap",
+            "shake_seconds",
+            "settle_seconds",
+            "shake_accel",
+        ):
             _require(getattr(self, f) >= 0.0, f, "must be >= 0", getattr(self, f))
         _require(self.min_spacing > 0.0, "min_spacing", "must be > 0", self.min_spacing)
         _require(self.shake_frequency > 0.0, "shake_frequency", "must be > 0", self.shake_frequency)
@@ -276,6 +289,12 @@ class WigConfig:
             "rest_splay",
             "needs rod_kind='chain'",
             self.rest_splay,
+        )
+        _require(
+            self.quadratic_damping == 0.0 or self.rod_kind == "chain",
+            "quadratic_damping",
+            "needs rod_kind='chain'",
+            self.quadratic_damping,
         )
         if self.curliness > 0.0:
             # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).

@@ -217,7 +217,11 @@ def add_chain_rod(
                     axis=list(axis),
                     stiffness=[stiffness, 0.0, 0.0],
                     # ×√s keeps every mode's damping ratio under mass scaling (c = 2ζ√(k m))
-                    damping=[rod.damping * stiffness * math.sqrt(rod.mass_scale), 0.0, 0.0],
+                    damping=[
+                        rod.damping * stiffness * math.sqrt(rod.mass_scale),
+                        rod.quadratic_damping * stiffness,  # the ω|ω| term of MuJoCo's damping polynomial
+                        0.0,
+                    ],
                     armature=armature,
                 )
         geom = body.add_geom(

@@ -148,6 +148,12 @@ class RodSpec:
     damping : float
         Stiffness-proportional damping of bending/torsion [s]: a chain's joint damping is ``damping · k`` for joint
         stiffness ``k``; a flex uses it as MuJoCo's ``elasticity damping`` (Rayleigh).
+    quadratic_damping : float
+        Stiffness-proportional *quadratic* damping of bending/torsion [s²] (chain rods only): a joint of stiffness
+        ``k`` turning at ``ω`` feels ``−quadratic_damping · k · ω|ω|`` (MuJoCo's polynomial joint damping), as a
+        segment whipping through air does. It damps fast motion (a curl springing back off a tine) and barely the
+        slow one (a pull), so it dissipates without making forces depend on the pull speed the way ``damping``
+        does. Not scaled by ``mass_scale``.
     clamp : {"start", None}
         ``"start"``: the root is built in to the parent body at ``points[0]`` with tangent ``points[1] - points[0]``
         (all points but ``points[0]`` move). ``None``: free rod.
@@ -190,6 +196,7 @@ class RodSpec:
     poisson: float = 0.49
     density: float = 1300.0
     damping: float = 0.0
+    quadratic_damping: float = 0.0
     clamp: Literal["start"] | None = "start"
     friction: float = 0.3
     rgba: tuple[float, float, float, float] = (0.35, 0.22, 0.12, 1.0)
@@ -242,6 +249,9 @@ class RodSpec:
         if self.mass_scale != 1.0 and self.kind != "chain":
             raise ValueError("RodSpec.mass_scale needs a chain rod (kind='chain')")
         _check_finite("damping", self.damping, nonneg=True)
+        _check_finite("quadratic_damping", self.quadratic_damping, nonneg=True)
+        if self.quadratic_damping and self.kind != "chain":
+            raise ValueError("RodSpec.quadratic_damping needs a chain rod (kind='chain')")
         _check_finite("friction", self.friction, nonneg=True)
         _check_finite("margin", self.margin, nonneg=True)
         _check_finite("poisson", self.poisson, nonneg=True)
