@@ -30,6 +30,7 @@ import numpy as np
 from . import hair as hairmod
 from .arm_control import CartesianController, plan_stroke
 from .constants import PAIN_THRESHOLD_N
+from .hair.drag import StrandDrag
 from .scene_build import (
     BRUSH_TCP,
     HEAD_POS,
@@ -173,6 +174,11 @@ class BrushingSim:
         self.contact_solver = mujoco.mjtSolver(int(self.model.opt.solver))
         self.hair_bodies = np.concatenate([v.bodies for v in self.entanglement_meter.views])
         self._hair_dofs = np.flatnonzero(np.isin(self.model.dof_bodyid, self.hair_bodies))
+        # Drag of the medium on the strands while they are brushed (WigConfig.drag_density; not in the preparation,
+        # so the pre-brushed wigs are those without it).
+        self._drag = (
+            StrandDrag(self.model, self.hair_bodies, self.wig.drag_density) if self.wig.drag_density else None
+        )
         # Divergence watch: every dof except the flex rods' twist hinges, whose tiny polar inertia lets them spin
         # at hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
         twist = {f"{n}_twist" for n in self.layout.names} if self.wig.rod_kind == "flex" else set()
@@ -358,6 +364,8 @@ class BrushingSim:
         self.use_step(contact=False)
         hairmod.set_state(self.model, self.data, state)
         self.data.time = 0.0
+        if self._drag is not None:  # the drag reads the velocities of the last forward pass: this state's
+            mujoco.mj_forward(self.model, self.data)
         self._q = self.controller.arm_qpos(self.data)
         self._target = self.park.copy()
         self.diverged = False
@@ -488,6 +496,8 @@ class BrushingSim:
         return not self._check()
 
     def _physics_step(self, samples: list | None) -> None:
+        if self._drag is not None:
+            self._drag.apply(self.data)
         mujoco.mj_step(self.model, self.data)
         self.n_steps += 1
         for fn in self._step_observers:

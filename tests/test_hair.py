@@ -59,6 +59,8 @@ def test_unknown_preset_lists_names() -> None:
         ({"group_rows": 0}, "group_rows"),
         ({"rest_splay": 0.5, "rod_kind": "flex"}, "rest_splay"),
         ({"quadratic_damping": -1e-4}, "quadratic_damping"),
+        ({"drag_density": -1.0}, "drag_density"),
+        ({"drag_density": 1e3, "rod_kind": "flex", "rest_splay": 0.0}, "drag_density"),
         ({"quadratic_damping": 1e-4, "rod_kind": "flex", "rest_splay": 0.0}, "quadratic_damping"),
         ({"self_collision": 1}, "self_collision"),
     ],

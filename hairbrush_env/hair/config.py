@@ -114,6 +114,10 @@ class WigConfig:
     quadratic_damping : float
         Quadratic damping of bending/torsion [s²] (chain strands; :class:`hairbrush_env.rods.RodSpec`): a hinge
         turning at ω feels ``−quadratic_damping · k · ω|ω|``. Damps a curl whipping off a tine, barely a pull.
+    drag_density : float
+        Density ρ [kg/m³] of a medium whose quadratic drag ``−½ ρ ℓ d |v| v`` acts on every strand segment while
+        it is brushed (:class:`hairbrush_env.hair.drag.StrandDrag`; chain strands; 0 = none, the default). Takes
+        out the momentum mass scaling gives a curl springing off a tine.
     friction : float
         Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
     edges_per_turn : int
@@ -180,6 +184,7 @@ class WigConfig:
     density: float = 1300.0
     damping: float = 0.02
     quadratic_damping: float = 0.0
+    drag_density: float = 0.0
     friction: float = 0.3
     edges_per_turn: int = 8
     min_edges: int = 12
@@ -210,6 +215,7 @@ class WigConfig:
             "density",
             "damping",
             "quadratic_damping",
+            "drag_density",
             "friction",
             "root_gap",
             "min_spacing",
@@ -232,6 +238,7 @@ class WigConfig:
         for f in (
             "damping",
             "quadratic_damping",
+            "drag_density",
             "friction",
             "root_gap",
             "shake_seconds",
@@ -296,6 +303,12 @@ class WigConfig:
             "needs rod_kind='chain'",
             self.quadratic_damping,
         )
+        _require(
+            self.drag_density == 0.0 or self.rod_kind == "chain",
+            "drag_density",
+            "needs rod_kind='chain'",
+            self.drag_density,
+        )
         if self.curliness > 0.0:
             # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).
             _require(
@@ -352,9 +365,16 @@ class WigConfig:
 
     def digest(self) -> str:
         """Stable hash of all fields (for cache keys)."""
-        blob = json.dumps(dataclasses.asdict(self), sort_keys=True, default=float)
+        fields = dataclasses.asdict(self)
+        # Fields added after states were first cached count only when set, so caches of older wigs stay valid.
+        for name in _LATE_FIELDS:
+            if fields[name] == 0.0:
+                del fields[name]
+        blob = json.dumps(fields, sort_keys=True, default=float)
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
+
+_LATE_FIELDS = ("quadratic_damping", "drag_density")
 
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
 # hanging (curl "shrinkage" = 1 − 1/√(1 + (2πR_C)²)) even where the pulled-straight length is similar.

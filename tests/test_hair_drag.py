@@ -1,0 +1,73 @@
+"""Quadratic drag on chain strands (:mod:`hairbrush_env.hair.drag`): terminal velocity against ``m g = ½ ρ ℓ d v²``."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from hairbrush_env import rods
+from hairbrush_env.hair.drag import StrandDrag
+
+RHO_HAIR = 1300.0
+
+
+def _free_rod(mass_scale: float) -> tuple[mujoco.MjModel, rods.RodView, rods.RodSpec]:
+    pts = rods.straight_rod_points([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.1, 10)
+    rod = rods.RodSpec(
+        name="r", points=pts, radius=8e-4, young=1e8, density=RHO_HAIR, clamp=None, mass_scale=mass_scale
+    )
+    model = rods.build_rod_model([rod])
+    return model, rods.RodView(model, "r"), rod
+
+
+@pytest.mark.parametrize("mass_scale", [1.0, 10.0])
+def test_falling_strand_reaches_the_terminal_velocity(mass_scale: float) -> None:
+    """A horizontal strand falling broadside settles at ``v_t = √(2 λ g / (ρ d))`` (λ its real mass per length):
+    the drag balances the real weight, whatever the inertia the mass scaling adds."""
+    model, view, rod = _free_rod(mass_scale)
+    data = mujoco.MjData(model)
+    rho = 1000.0
+    drag = StrandDrag(model, view.bodies, rho)
+    mujoco.mj_forward(model, data)
+    for _ in range(round(0.5 / model.opt.timestep)):
+        drag.apply(data)
+        mujoco.mj_step(model, data)
+    v = drag.velocity(data)
+    lam = RHO_HAIR * math.pi * rod.radius**2
+    v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * rod.radius))
+    assert v[:, 2] == pytest.approx(-v_t, rel=0.02)
+    assert np.abs(v[:, :2]).max() < 0.01 * v_t
+
+
+def test_drag_opposes_the_velocity_with_its_square() -> None:
+    model, view, _ = _free_rod(1.0)
+    data = mujoco.MjData(model)
+    drag = StrandDrag(model, view.bodies, 500.0)
+    data.qvel[:3] = [0.3, -0.4, 0.0]  # the free joint's linear velocity: every segment moves at 0.5 m/s
+    mujoco.mj_forward(model, data)
+    drag.apply(data)
+    f = data.xfrc_applied[view.bodies, :3]
+    expected = -drag.coefficient[:, None] * 0.5 * np.array([0.3, -0.4, 0.0])
+    np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-15)
+    drag.clear(data)
+    assert not data.xfrc_applied.any()
+
+
+def test_bad_density_is_named() -> None:
+    model, view, _ = _free_rod(1.0)
+    with pytest.raises(ValueError, match="drag density"):
+        StrandDrag(model, view.bodies, -1.0)
+
+
+def test_wig_digest_unchanged_by_unset_late_fields() -> None:
+    """Cached pre-brushed states stay valid: ``quadratic_damping`` and ``drag_density`` count in the digest only when
+    set (the curly preset's digest before they existed: 01ed93b7c0f2bb45)."""
+    from hairbrush_env import hair
+
+    curly = hair.PRESETS["curly"]
+    assert curly.digest() == "01ed93b7c0f2bb45"
+    assert curly.replace(drag_density=1000.0).digest() != curly.digest()
+    assert curly.replace(quadratic_damping=1e-3).digest() != curly.digest()
