@@ -426,3 +426,34 @@ def test_brush_narrower_than_the_wig_warns() -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         scene.BrushingSim(scene.SceneConfig(wig="straight")).close()
+
+
+def test_drag_density_applies_the_strand_drag_at_every_brushing_step() -> None:
+    """``WigConfig.drag_density``: at each physics step of a brushing move the strands carry ``−½ ρ ℓ d |v| v`` of
+    the velocities of MuJoCo's last forward pass (hair.drag.StrandDrag); without it they carry no applied force."""
+    from hairbrush_env.hair.drag import StrandDrag
+
+    wig = hair.PRESETS["coily"].replace(n_strands=4, n_triples=0, drag_density=1000.0)
+    with scene.BrushingSim(scene.SceneConfig(wig=wig)) as sim:
+        sim.reset(0)
+        reference = StrandDrag(sim.model, sim.hair_bodies, 1000.0)
+        seen: list[float] = []
+        last: list[np.ndarray] = []
+
+        def check(s: scene.BrushingSim) -> None:
+            if last:
+                v = last[0]
+                expected = -(reference.coefficient * np.linalg.norm(v, axis=1))[:, None] * v
+                np.testing.assert_allclose(
+                    s.data.xfrc_applied[s.hair_bodies, :3], expected, rtol=1e-12, atol=0
+                )
+                seen.append(float(np.abs(expected).max()))
+            last[:] = [reference.velocity(s.data)]
+
+        sim.add_step_observer(check)
+        sim.step_velocity(-0.05, 0.0, 0.2)
+        assert len(seen) > 10 and max(seen) > 0.0
+    with scene.BrushingSim(scene.SceneConfig(wig=wig.replace(drag_density=0.0))) as plain:
+        plain.reset(0)
+        plain.step_velocity(-0.05, 0.0, 0.2)
+        assert not plain.data.xfrc_applied[plain.hair_bodies].any()

@@ -8,7 +8,8 @@ makes the brushing force grow with the pull speed (docs/detangling.md, *What mak
 speed*). Each segment of length ``ℓ`` and diameter ``d`` feels ``F = −½ ρ ℓ d |v| v`` at its centre of mass, ``v``
 its velocity, ``ρ`` = ``WigConfig.drag_density``. MuJoCo's own fluid model (``mjOption.density``) does the same
 with implicit derivatives, which under the ``discrete`` integrator enter the effective inertia body by body and
-cost 2.5× a brushing step; here the force is computed from the velocity of the step before and written to
+cost 2.5× a brushing step; here the force is computed from the velocities of the last forward pass (the start of
+the step before: one step late) and written to
 ``mjData.xfrc_applied``, which costs nothing measurable. It stays stable while ``ρ ℓ d |v| Δt / m ≪ 1`` (0.03 per
 m/s for the default wisp at ``ρ = 1000`` and the 1 ms step).
 """
