@@ -9,9 +9,9 @@ speed*). Each segment of length ``ℓ`` and diameter ``d`` feels ``F = −½ ρ 
 its velocity, ``ρ`` = ``WigConfig.drag_density``. MuJoCo's own fluid model (``mjOption.density``) does the same
 with implicit derivatives, which under the ``discrete`` integrator enter the effective inertia body by body and
 cost 2.5× a brushing step; here the force is computed from the velocities of the last forward pass (the start of
-the step before: one step late) and written to
-``mjData.xfrc_applied``: 0.14 ms a step on the default wig, ~3 % of a brushing step. It stays stable while ``ρ ℓ d |v| Δt / m ≪ 1`` (0.03 per
-m/s for the default wisp at ``ρ = 1000`` and the 1 ms step).
+the step before: one step late) and written to ``mjData.xfrc_applied``: 0.14 ms a step on the default wig, ~3 % of
+a brushing step. It stays stable while ``ρ ℓ d |v| Δt / m ≪ 1`` (0.03 per m/s for the default wisp at ``ρ = 1000``
+and the 1 ms step).
 """
 
 from __future__ import annotations
