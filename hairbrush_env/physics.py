@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` and the studies' ``--physics v1`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1``/``-v2`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -11,6 +11,13 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   repeated full strokes on coily read above F_T first and comb out to ≤ 30 % (Fig. 3.6(i)) and the full-stroke
   force grows with curliness (Fig. 3.7); with the rigid comb the slipperier strands pack onto a tine and jam
   (docs/detangling.md, *Tines that bend on* and *HairBrush-v1*).
+- ``v2``: v1 with a tenth of the joint damping (0.002 s), wisps of cohesion 16 (``young`` 1.6e8 Pa) and a quadratic
+  drag of water's density on the strands while they are brushed (``drag_density``, :mod:`hairbrush_env.hair.drag`).
+  v1's joint damping, scaled with the mass, made the force grow with the pull speed (+78 % for 4×, Fig. 3.8); the
+  drag takes out the momentum the mass scaling adds to a curl springing off a tine without resisting the slow pull
+  (+30 %). Repeated full strokes then read their largest force first and comb out to ≤ 30 % on 5 of 6 series
+  (Fig. 3.6(i)), and the sigmoid finishes by eq. 3.4 on curly and coily; but wavy's full stroke reads more than
+  loose_curl's (Fig. 3.7) (docs/detangling.md, *HairBrush-v2*).
 """
 
 from __future__ import annotations
@@ -56,6 +63,17 @@ class PhysicsVersion:
 PHYSICS: Mapping[str, PhysicsVersion] = {
     "v0": PhysicsVersion("v0"),
     "v1": PhysicsVersion("v1", brush="soft_comb", wig_fields={"self_collision": True, "friction": 0.15}),
+    "v2": PhysicsVersion(
+        "v2",
+        brush="soft_comb",
+        wig_fields={
+            "self_collision": True,
+            "friction": 0.15,
+            "damping": 0.002,
+            "young": 1.6e8,
+            "drag_density": 1000.0,
+        },
+    ),
 }
 
 

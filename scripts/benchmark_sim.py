@@ -17,7 +17,8 @@ Sections (each prints a markdown table; every row of a table comes from this one
 Cases: ``chain (default)`` (the default wig and comb), ``flex wave 1`` (the first release's wig and scene,
 ``scene.wave1_scene``: DER flex, 5 edges per curl turn, ≤ 16 edges, κ = 50, compact lattice, paddle brush, short pull)
 and ``chain, wave-1 wig`` (the same wig and scene as chains: the like-for-like comparison of strand models);
-``pull_through`` adds ``chain, v1 physics`` (``HairBrush-v1``'s self-colliding strands, friction 0.15, soft comb).
+``pull_through`` adds ``chain, v1 physics`` (``HairBrush-v1``'s self-colliding strands, friction 0.15, soft comb) and
+``chain, v2 physics`` (``HairBrush-v2``'s: v1 with less joint damping, stiffer wisps and drag on the strands).
 Single-thread physics costs use CPU time (``time.process_time``).
 """
 
@@ -292,18 +293,17 @@ def section_force_table(args: argparse.Namespace) -> None:
 
 
 def section_pull_through(args: argparse.Namespace) -> None:
-    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1 physics against the
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1/v2 physics against the
     wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
     seeds = (7,) if args.quick else (7, 11)
     base = hair.PRESETS[hair.DEFAULT_WIG]
     cases = list(wig_cases(base).items())[::-1]  # flex first: the reference
-    v1 = PHYSICS[
-        "v1"
-    ]  # HairBrush-v1: self-colliding strands, friction 0.15, soft comb (widened like the default)
-    soft = dataclasses.replace(
-        get_brush(v1.brush), columns=max(get_brush(v1.brush).columns, 2 * base.n_groups + 1)
-    )
-    cases.append(("chain, v1 physics", scene.SceneConfig(wig=v1.wig(base), brush=soft)))
+    for version in ("v1", "v2"):  # HairBrush-vN's physics, the comb widened like the default's
+        physics = PHYSICS[version]
+        soft = dataclasses.replace(
+            get_brush(physics.brush), columns=max(get_brush(physics.brush).columns, 2 * base.n_groups + 1)
+        )
+        cases.append((f"chain, {version} physics", scene.SceneConfig(wig=physics.wig(base), brush=soft)))
     print(
         f"\n## Pull-through stroke through '{hair.DEFAULT_WIG}', b_l = 1, no abort, seeds {seeds}, CPU time\n"
     )

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from hairbrush_env.brush import get_brush
-from hairbrush_env.envs import ENV_IDS, V1_PHYSICS
+from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
 
@@ -19,11 +19,24 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1"}
+    assert set(PHYSICS) == {"v0", "v1", "v2"}
+
+
+def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
+    """v2 keeps v1's contact model and comb and changes only the dissipation and the wisp stiffness; a custom wig keeps
+    its own shape."""
+    v1, v2 = get_physics("v1"), get_physics("v2")
+    assert v2.brush == v1.brush == "soft_comb"
+    assert {k: v2.wig_fields[k] for k in v1.wig_fields} == dict(v1.wig_fields)
+    w = v2.wig(get_wig("coily").replace(name="mine", length=0.2))
+    assert (w.name, w.length, w.curliness) == ("mine", 0.2, 0.8)
+    assert w.damping == 0.002 and w.drag_density == 1000.0
+    assert w.young_modulus == pytest.approx(16 / 12.5 * get_wig("coily").young_modulus)
+    assert ENV_IDS["HairBrush-v2"][2] == ENV_IDS["HairBrushContinuous-v2"][2] == V2_PHYSICS == v2.env_kwargs()
 
 
 def test_unknown_version_is_refused() -> None:
-    with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1"):
+    with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1, v2"):
         get_physics("v9")
 
 

@@ -4,6 +4,7 @@
 - ``HairBrushContinuous-v0`` — 10 Hz brush velocity control
   (:class:`~hairbrush_env.envs.continuous.HairBrushContinuousEnv`).
 - ``HairBrush-v1``, ``HairBrushContinuous-v1`` — the same envs with the v1 physics (:data:`V1_PHYSICS`).
+- ``HairBrush-v2``, ``HairBrushContinuous-v2`` — the same envs with the v2 physics (:data:`V2_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -19,6 +20,7 @@ __all__ = [
     "PAIN_THRESHOLD_N",
     "STROKE_ENV_IDS",
     "V1_PHYSICS",
+    "V2_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -30,6 +32,9 @@ MAX_CONTROL_STEPS = 600  # HairBrushContinuous-v0 episode limit (60 s at 10 Hz)
 #: What v1 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v1"]`` (self-colliding strands, hair–hair
 #: friction 0.15, the soft comb). Constructor arguments override it (``gymnasium.make("HairBrush-v1", brush="comb")``).
 V1_PHYSICS: dict = PHYSICS["v1"].env_kwargs()
+#: What v2 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v2"]`` (v1 with a tenth of the joint damping,
+#: stiffer wisps and a quadratic drag on the strands while they are brushed).
+V2_PHYSICS: dict = PHYSICS["v2"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -41,6 +46,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V1_PHYSICS,
+    ),
+    "HairBrush-v2": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V2_PHYSICS),
+    "HairBrushContinuous-v2": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V2_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

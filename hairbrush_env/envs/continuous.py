@@ -78,6 +78,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     ## Version History
     - v0: initial release.
     - v1: v0 with the v1 physics of `HairBrush-v1` (self-colliding strands, hair–hair friction 0.15, soft comb).
+    - v2: v0 with the v2 physics of `HairBrush-v2` (v1 with less joint damping, stiffer wisps, drag on the strands).
     """
 
     def __init__(

@@ -131,6 +131,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       m/s.
     - v1 (issue #11): v0 with self-colliding strands, hair–hair friction 0.15 and the soft (nylon) comb
       (`hairbrush_env.envs.V1_PHYSICS`; docs/envs.md, *Versions*). Same spaces, rewards and episode rules.
+    - v2 (issue #11): v1 with a tenth of the strands' joint damping, wisps of cohesion 16 and a quadratic drag on the
+      strands while they are brushed (`hairbrush_env.envs.V2_PHYSICS`). Same spaces, rewards and episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.

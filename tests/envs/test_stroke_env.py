@@ -142,6 +142,24 @@ def test_v1_brushes_with_the_v1_physics_and_v0_is_unchanged(small_wig):
     rigid.close()
 
 
+def test_v2_brushes_with_drag_and_less_damping(small_wig):
+    """``HairBrush-v2``: v1's contact model and comb plus v2's dissipation on every wig, and one stroke runs with
+    the drag acting on the strands."""
+    v2 = gym.make("HairBrush-v2", wig=small_wig)
+    sim = v2.unwrapped.sim
+    assert (
+        sim.wig.self_collision
+        and sim.wig.friction == pytest.approx(0.15)
+        and sim.brush == get_brush("soft_comb")
+    )
+    assert (sim.wig.damping, sim.wig.drag_density, sim.wig.young) == (0.002, 1000.0, 1.6e8)
+    v2.reset(seed=0)
+    _, _, _, truncated, info = v2.step(np.array([1.0], np.float32))
+    assert not info["diverged"] and not truncated
+    assert np.abs(sim.data.xfrc_applied).max() > 0.0  # the strand drag of the last physics step
+    v2.close()
+
+
 def test_divergence_truncates_without_raising(env):
     env.reset(seed=0)
     sim = env.unwrapped.sim
