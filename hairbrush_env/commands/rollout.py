@@ -112,7 +112,8 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
         "--env",
         default="HairBrush-v0",
         choices=list(ENV_IDS),
-        help="env id (v1: self-colliding strands, hair-hair friction 0.15, soft comb; hairbrush_env.physics)",
+        help="env id (v1: self-colliding strands, hair-hair friction 0.15, soft comb; v2: v1 with less joint damping, "
+        "stiffer wisps and drag on the strands; hairbrush_env.physics)",
     )
     p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(wig_choices())}")
     p.add_argument(
