@@ -189,3 +189,55 @@ def test_fig_3_6_coily_under_v1_force_falls_and_plateaus(coily_six_strokes_v1):
     """Fig. 3.6(i) under v1: every later stroke reads less than the first, and eq. 3.4 is met within six strokes,
     on every coily seed."""
     _assert_falls_from_the_first_and_plateaus(coily_six_strokes_v1)
+
+
+def _six_strokes_under(version: str, wig: str, seed: int) -> list[dict]:
+    from hairbrush_env.physics import get_physics
+
+    return repeated_strokes(BrushingSim(get_physics(version).scene_config(wig)), seed=seed, n_strokes=6)
+
+
+@pytest.fixture(scope="module")
+def six_strokes_v2() -> dict[tuple[str, int], list[dict]]:
+    return {(w, s): _six_strokes_under("v2", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
+
+
+def test_fig_3_6_curly_under_v2_reduced():
+    """Fig. 3.6(i) under ``HairBrush-v2``'s physics, reduced to two full strokes on curly seed 0: the first reads
+    near F_T (measured 10.2 N), the second less than half of it (3.6 N), two strokes leave ≤ 40 % of the
+    entanglement (0.32), and no strand crosses another or comes closer than half its diameter to itself."""
+    from hairbrush_env.physics import get_physics
+
+    rows = repeated_strokes(BrushingSim(get_physics("v2").scene_config("curly")), seed=0, n_strokes=2)
+    first, second = rows[1]["max_force"], rows[2]["max_force"]
+    assert first >= 0.8 * PAIN_THRESHOLD and second < 0.5 * first, (first, second)
+    assert rows[-1]["entanglement"] <= 0.4 * rows[0]["entanglement"]
+    assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+
+
+@pytest.mark.slow
+def test_fig_3_6_under_v2_physics(six_strokes_v2):
+    """Fig. 3.6(i) under v2 (``hairbrush repeat --physics v2 --wigs curly,coily --seeds 3``), six full strokes per
+    series: the first reads 9.2–10.8 N, every series ends at ≤ 35 % of its entanglement (measured curly 0.29 /
+    0.31 / 0.33, coily 0.23 / 0.27 / 0.26; the thesis's ≤ 30 % holds on four of six), the last three strokes read
+    under half the first, and no strand crosses another or comes closer than half its diameter to itself (min
+    0.83)."""
+    for rows in six_strokes_v2.values():
+        forces = [r["max_force"] for r in rows[1:]]
+        assert forces[0] >= 0.8 * PAIN_THRESHOLD and max(forces[3:]) < 0.5 * forces[0], forces
+        assert rows[-1]["entanglement"] <= 0.35 * rows[0]["entanglement"]
+        assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="under v2 curly seed 1 reads 8.9 N in its fourth stroke and never meets eq. 3.4, coily seed 2 reads 11.6 N "
+    "in its second after 9.9; the other four series fall from the first stroke and plateau (docs/detangling.md, "
+    "*HairBrush-v2*)",
+)
+def test_fig_3_6_under_v2_force_falls_and_plateaus(six_strokes_v2):
+    """Fig. 3.6(i) under v2: every later stroke reads less than the first, and eq. 3.4 is met within six strokes, on
+    every curly and coily seed."""
+    _assert_falls_from_the_first_and_plateaus(dict(enumerate(six_strokes_v2.values())))
