@@ -163,7 +163,7 @@ BAD_INPUT = [
     (["repeat", "--brush-length", "0"], ["--brush-length", "'0'"]),
     (["repeat", "--strokes", "0"], ["--strokes", "'0'"]),
     (["repeat", "--physics", "v9"], ["--physics", "'v9'"]),
-    (["compare", "--physics", "v2"], ["--physics", "'v2'"]),
+    (["compare", "--physics", "v1.5"], ["--physics", "'v1.5'"]),
     (["rollout", "--env", "HairBrush-v7"], ["--env", "'HairBrush-v7'"]),
     (["topology", "demo", "--frames", "-3"], ["--frames", "-3"]),
     (["topology", "lk", "{d}/malformed.csv", "{d}/ring.csv"], ["curve_a", "malformed.csv"]),
