@@ -20,8 +20,8 @@ $(VENV)/.installed: pyproject.toml | $(BIN)/python
 # The main job: a headless closed-loop (sigmoid, thesis Algorithm 1) brushing rollout on a curly wig that writes a
 # rerun recording, a video, a JSON summary and a plot into $(OUT).
 run: $(VENV)/.installed
-	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush rollout --env HairBrush-v0 --wig curly --policy sigmoid \
-		--episodes 1 --max-steps 10 --seed 0 --rerun $(OUT)/rollout.rrd --video $(OUT)/rollout.webm \
+	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush rollout --env HairBrush-v2 --wig curly --policy sigmoid \
+		--episodes 1 --max-steps 30 --seed 0 --rerun $(OUT)/rollout.rrd --video $(OUT)/rollout.webm \
 		--json $(OUT)/rollout.json --plot $(OUT)/rollout.png
 
 # Default suite (< 10 min on 2 cores); long physics runs are marked `slow`.
