@@ -41,6 +41,14 @@ def test_unknown_preset_lists_names() -> None:
     assert "wig" in str(err.value)
 
 
+def test_wig_lists_mix_names_and_sets() -> None:
+    """``--wigs all,held_out`` is every preset and every held-out wig, once each, in order."""
+    names = hair.wig_names("curly,all,held_out")
+    assert names == ["curly", *[w for w in hair.PRESETS if w != "curly"], *hair.HELD_OUT_WIGS]
+    with pytest.raises(ValueError, match="unknown wig held_out_curly"):
+        hair.wig_names("all,held_out_curly", held_out=False)
+
+
 @pytest.mark.parametrize(
     ("changes", "field"),
     [

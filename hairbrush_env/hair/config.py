@@ -415,13 +415,18 @@ WIG_SETS: Mapping[str, tuple[str, ...]] = {
 
 
 def wig_names(text: str, *, sets: Sequence[str] = tuple(WIG_SETS), held_out: bool = True) -> list[str]:
-    """Wig names of ``text``: a set name from ``sets`` (``all`` presets, ``train``, ``held_out``) or comma-separated
-    preset (and, with ``held_out``, held-out) names. ``ValueError`` lists the valid names."""
-    if text in sets:
-        return list(WIG_SETS[text])
-    names = [w.strip() for w in text.split(",") if w.strip()]
+    """Wig names of ``text``: comma-separated preset (and, with ``held_out``, held-out) names or set names from
+    ``sets`` (``all`` presets, ``train``, ``held_out``), e.g. ``all,held_out``; repeats are dropped, order kept.
+    ``ValueError`` lists the valid names."""
     valid = [*PRESETS, *HELD_OUT_WIGS] if held_out else list(PRESETS)
-    bad = [w for w in names if w not in valid]
+    names: list[str] = []
+    bad: list[str] = []
+    for item in (w.strip() for w in text.split(",")):
+        if not item:
+            continue
+        expanded = list(WIG_SETS[item]) if item in sets else [item]
+        bad += [w for w in expanded if w not in valid]
+        names += [w for w in expanded if w in valid and w not in names]
     if not names or bad:
         extra = "".join(f", or {s!r}" for s in sets)
         raise ValueError(f"unknown wig {', '.join(bad) or repr(text)}; valid: {', '.join(valid)}{extra}")
