@@ -1,11 +1,11 @@
 """Exploration probe: where the entwined link sits along the strands, before and after repeated full strokes.
 
-    python scripts/probe_link_depth.py WIG SEED STROKES [--pairs]     # e.g. curly 0 6
+    python scripts/probe_link_depth.py WIG SEED STROKES [--pairs] [--physics VERSION]   # e.g. curly 0 6 --physics v2
 
-Prints, after each stroke (b_l = 1, no abort), Σ|Lk| of the entwined pairs split by depth below the roots (each
-pair's link density, ``topology.link_density``, summed in its own sense) and, at the end, every pair's signed link
-next to the link it was built with (docs/detangling.md, *What holds the link*). ``--pairs`` also prints every pair's
-signed link by depth with its root positions, after each stroke (*Root orientation and splay*).
+Prints, after each stroke (b_l = 1, no abort), Σ|Lk| of the entwined pairs split by depth below the roots
+(``Entanglement.link_by_depth``: each pair's link density summed in its built-in sense) and, at the end, every
+pair's signed link next to the link it was built with (docs/detangling.md, *What holds the link*). ``--pairs`` also
+prints every pair's signed link by depth with its root positions, after each stroke (*Root orientation and splay*).
 """
 
 import os
@@ -14,37 +14,36 @@ import sys
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import numpy as np
 
-from hairbrush_env.scene import BrushingSim, SceneConfig
+from hairbrush_env.physics import get_physics
+from hairbrush_env.scene import BrushingSim
 from hairbrush_env.topology.gauss import link_density
 
 wig, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 per_pair = "--pairs" in sys.argv[4:]
-sim = BrushingSim(SceneConfig(wig=wig))
+version = sys.argv[sys.argv.index("--physics") + 1] if "--physics" in sys.argv else "v0"
+sim = BrushingSim(get_physics(version).scene_config(wig))
 sim.reset(seed)
 print(f"roots z {sim.hair_top:.3f} m, highest stroke start {sim.start_height(1.0):.3f} m")
 edges = np.array([0, 0.008, 0.02, 0.04, 0.06, 0.08, 0.12, 0.2, 1.0])  # depth below the roots [m]
 
 
 def report(tag: str) -> None:
-    curves = sim.hair_curves()
-    band = np.zeros(len(edges) - 1)
-    total = 0.0
-    for i, j in sim.entanglement_meter.pairs:
-        a, b = curves[i], curves[j]
-        _, lam = link_density(a, b)
-        ell = lam * np.linalg.norm(np.diff(0.5 * (a + b), axis=0), axis=1)
-        depth = sim.hair_top - 0.25 * (a[:-1, 2] + a[1:, 2] + b[:-1, 2] + b[1:, 2])
-        lk = ell.sum()
-        total += abs(lk)
-        k = np.clip(np.digitize(depth, edges) - 1, 0, len(band) - 1)
-        np.add.at(band, k, np.sign(lk) * ell)
-        if per_pair:
+    meter = sim.entanglement_meter
+    band = meter.link_by_depth(sim.data, edges)
+    entwined, made = meter.breakdown(sim.data)
+    if per_pair:
+        curves = sim.hair_curves()
+        for i, j in meter.pairs:
+            a, b = curves[i], curves[j]
+            _, lam = link_density(a, b)
+            ell = lam * np.linalg.norm(np.diff(0.5 * (a + b), axis=0), axis=1)
+            depth = sim.hair_top - 0.25 * (a[:-1, 2] + a[1:, 2] + b[:-1, 2] + b[1:, 2])
             mine = np.zeros(len(band))
-            np.add.at(mine, k, ell)
+            np.add.at(mine, np.clip(np.digitize(depth, edges) - 1, 0, len(band) - 1), ell)
             r = 1e3 * sim.layout.roots[[i, j]]
             print(
                 f"  pair ({i},{j}) roots x {r[0, 0]:+.1f} {r[1, 0]:+.1f} y {r[0, 1]:+.1f} {r[1, 1]:+.1f} mm:",
-                f"Lk {lk:+.2f};",
+                f"Lk {ell.sum():+.2f};",
                 " ".join(
                     f"{1e3 * edges[q]:.0f}-{1e3 * edges[q + 1]:.0f}:{mine[q]:+.2f}"
                     for q in range(len(mine))
@@ -52,7 +51,11 @@ def report(tag: str) -> None:
                 ),
             )
     bands = " ".join(f"{1e3 * edges[q]:.0f}-{1e3 * edges[q + 1]:.0f}:{band[q]:.2f}" for q in range(len(band)))
-    print(f"{tag}: Σ|Lk| entwined {total:.2f}; by depth below the roots [mm] {bands}", flush=True)
+    print(
+        f"{tag}: Σ|Lk| entwined {entwined:.2f}, made between groups {made:.2f}; "
+        f"built-in-sense link by depth below the roots [mm] {bands}",
+        flush=True,
+    )
 
 
 report("pre-brushed")

@@ -151,6 +151,23 @@ def test_entanglement_at_rest_equals_ground_truth() -> None:
     assert layout.n_links == pytest.approx(np.abs(layout.pair_link).sum())
 
 
+def test_link_by_depth_spreads_each_pairs_link_along_it() -> None:
+    """At rest the bands hold all of the built-in link (Σ|Lk|), none of it above the roots or below the free ends,
+    and a band edge moved past the strands' end changes nothing."""
+    wig = hair.PRESETS["curly"].replace(n_strands=8, n_triples=0)
+    model, layout = _wig_model(wig)
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+    meter = hair.Entanglement(model, layout)
+    bands = meter.link_by_depth(data, [0.0, 0.02, 0.05, 1.0])
+    assert bands.sum() == pytest.approx(np.abs(layout.pair_link).sum(), rel=1e-9)
+    assert np.all(bands > 0.0)
+    deeper = meter.link_by_depth(data, [0.0, 0.02, 0.05, 5.0])
+    np.testing.assert_allclose(deeper, bands)
+    with pytest.raises(ValueError, match="depths"):
+        meter.link_by_depth(data, [0.05, 0.02])
+
+
 def test_self_collision_lets_a_strand_touch_its_own_segments() -> None:
     """Off (the default), every non-adjacent segment pair of a strand is excluded from collision; on, none is."""
     wig = hair.PRESETS["curly"].replace(n_strands=4, n_triples=0)

@@ -8,7 +8,7 @@ import mujoco
 import numpy as np
 
 from .. import rods
-from ..topology import linking_number
+from ..topology import link_density, linking_number
 from ..topology.proximity import close_pair_proximity, polyline_distance
 from .layout import WigLayout
 
@@ -83,6 +83,27 @@ class Entanglement:
         mat = self.link_matrix(data) if link is None else link
         lk = mat[self.pairs[:, 0], self.pairs[:, 1]] * self.built_in_sign
         return int(np.count_nonzero(lk >= CROSS_LINK_THRESHOLD))
+
+    def link_by_depth(self, data: mujoco.MjData, depths: Sequence[float]) -> np.ndarray:
+        """Where along the strands the entwined pairs' link sits: ``Σ`` over the pairs of their link in their
+        built-in sense (so undone or reversed turns count negative), split into bands of depth below the roots
+        ``depths[k] ≤ depth < depths[k+1]`` [m] (ascending; a segment deeper than the last edge joins the last
+        band). Each pair's link is spread along it by its link density (``topology.link_density``), so the bands
+        sum to ``Σ sign₀ Lk`` over the pairs. The roots' height is the highest root."""
+        edges = np.asarray(depths, dtype=float)
+        if edges.ndim != 1 or edges.size < 2 or np.any(np.diff(edges) <= 0):
+            raise ValueError(f"depths: need >= 2 ascending band edges [m], got {depths!r}")
+        curves = self.curve_array(data)
+        top = float(curves[:, 0, 2].max())
+        bands = np.zeros(edges.size - 1)
+        for (i, j), sign in zip(self.pairs, self.built_in_sign, strict=True):
+            a, b = curves[i], curves[j]
+            _, lam = link_density(a, b)
+            link = lam * np.linalg.norm(np.diff(0.5 * (a + b), axis=0), axis=1)
+            depth = top - 0.25 * (a[:-1, 2] + a[1:, 2] + b[:-1, 2] + b[1:, 2])
+            k = np.clip(np.searchsorted(edges, depth, side="right") - 1, 0, bands.size - 1)
+            np.add.at(bands, k, sign * link)
+        return bands
 
     def link_matrix(self, data: mujoco.MjData) -> np.ndarray:
         """Open-curve Gauss link of every pair of strands, ``(n, n)`` symmetric with a zero diagonal."""
