@@ -8,6 +8,7 @@ sizes the head plate and the tool centre point to them, so scenes, studies and t
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -187,6 +188,9 @@ BRUSH_PRESETS: dict[str, BrushConfig] = {
     ),
     "paddle": BrushConfig(),
 }
+# The soft comb two tines wider (±240 mm): it spans a curtain of twelve pairs (24 strands without triples, 40 mm
+# apart: group axes at ±220 mm, curls out to ±232 mm), with a tine through every group axis and between neighbours.
+BRUSH_PRESETS["wide_soft_comb"] = dataclasses.replace(BRUSH_PRESETS["soft_comb"], columns=25)
 """Named brushes. ``comb`` (the scenes' default): one row of 23 rigid 60 mm tines at 20 mm (±220 mm), spanning the
 default one-group-deep curtain (``WigConfig.group_rows = 1``, 40 mm group spacing): every group axis has a tine
 through it and a tine between neighbouring groups, so each stroke parts the strands of every pair; 60 mm crosses a
@@ -196,7 +200,8 @@ at 6 mm, kept for the wave-1 benchmarks; it pushes whole groups aside and winds 
 :func:`tine_hinge_stiffness`, 1.1 N m/rad: 0.03 rad under 1 N at the curtain, up to 1.2 rad), like the thesis's
 soft-bristled brush, for studies of bristle compliance: it frees a pair whose wound free ends lock on a rigid tine,
 but over repeated strokes jams occur elsewhere and it combs out no better (``docs/detangling.md``, *Jams,
-soft tines*)."""
+soft tines*). ``wide_soft_comb``: ``soft_comb`` with 25 tines (±240 mm), for the twelve-pair curtain of
+``HairBrush-v3``."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:

@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1``/``-v2`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1``/``-v2``/``-v3`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -18,6 +18,11 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   (+30 %). Repeated full strokes then read their largest force first and comb out to ≤ 30 % on 5 of 6 series
   (Fig. 3.6(i)), and the sigmoid finishes by eq. 3.4 on curly and coily; but wavy's full stroke reads more than
   loose_curl's (Fig. 3.7) (docs/detangling.md, *HairBrush-v2*).
+- ``v3``: v2 with every group a pair (``n_triples = 0``: twelve pairs of the default 24 strands) and the comb two
+  tines wider to span them (``wide_soft_comb``). A comb's tines run along the brush's depth and part strands only
+  by where they hang across it; one tine through a triple's axis parts one strand from the other two, whose link
+  then has no way out. Under v2 those pairs kept 0.14 of curly's link after six full strokes; without triples six
+  full strokes leave about 0.2 on curly and coily (docs/detangling.md, *What holds the link under v2*).
 """
 
 from __future__ import annotations
@@ -36,6 +41,8 @@ class PhysicsVersion:
     name: str
     brush: str = "comb"
     wig_fields: Mapping[str, Any] = field(default_factory=dict)
+    #: What the version changes, in a few words (the CLI's help texts).
+    summary: str = ""
 
     def env_kwargs(self) -> dict[str, Any]:
         """Constructor arguments of the brushing envs for this version (empty for v0: the envs' defaults)."""
@@ -61,8 +68,13 @@ class PhysicsVersion:
 
 
 PHYSICS: Mapping[str, PhysicsVersion] = {
-    "v0": PhysicsVersion("v0"),
-    "v1": PhysicsVersion("v1", brush="soft_comb", wig_fields={"self_collision": True, "friction": 0.15}),
+    "v0": PhysicsVersion("v0", summary="rigid comb, hair-hair friction 0.3"),
+    "v1": PhysicsVersion(
+        "v1",
+        brush="soft_comb",
+        wig_fields={"self_collision": True, "friction": 0.15},
+        summary="self-colliding strands, hair-hair friction 0.15, soft comb",
+    ),
     "v2": PhysicsVersion(
         "v2",
         brush="soft_comb",
@@ -73,8 +85,27 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
             "young": 1.6e8,
             "drag_density": 1000.0,
         },
+        summary="v1 with a tenth of the joint damping, stiffer wisps and drag on the strands",
+    ),
+    "v3": PhysicsVersion(
+        "v3",
+        brush="wide_soft_comb",
+        wig_fields={
+            "self_collision": True,
+            "friction": 0.15,
+            "damping": 0.002,
+            "young": 1.6e8,
+            "drag_density": 1000.0,
+            "n_triples": 0,
+        },
+        summary="v2 with every group a pair and a comb two tines wider",
     ),
 }
+
+
+def physics_help() -> str:
+    """One line per version for the CLI's help texts: ``v0 (...); v1 (...); ...``."""
+    return "; ".join(f"{v.name} ({v.summary})" for v in PHYSICS.values())
 
 
 def get_physics(name: str | PhysicsVersion) -> PhysicsVersion:

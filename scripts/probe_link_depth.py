@@ -1,6 +1,7 @@
 """Exploration probe: where the entwined link sits along the strands, before and after repeated full strokes.
 
-    python scripts/probe_link_depth.py WIG SEED STROKES [--pairs] [--physics VERSION]   # e.g. curly 0 6 --physics v2
+    python scripts/probe_link_depth.py WIG SEED STROKES [--pairs] [--physics VERSION] [--scene JSON]
+    # e.g. curly 0 6 --physics v2 --scene '{"scalp_clearance": 0.001}'
 
 Prints, after each stroke (b_l = 1, no abort), Σ|Lk| of the entwined pairs split by depth below the roots
 (``Entanglement.link_by_depth``: each pair's link density summed in its built-in sense) and, at the end, every
@@ -8,6 +9,7 @@ pair's signed link next to the link it was built with (docs/detangling.md, *What
 prints every pair's signed link by depth with its root positions, after each stroke (*Root orientation and splay*).
 """
 
+import json
 import os
 import sys
 
@@ -21,7 +23,8 @@ from hairbrush_env.topology.gauss import link_density
 wig, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 per_pair = "--pairs" in sys.argv[4:]
 version = sys.argv[sys.argv.index("--physics") + 1] if "--physics" in sys.argv else "v0"
-sim = BrushingSim(get_physics(version).scene_config(wig))
+scene = json.loads(sys.argv[sys.argv.index("--scene") + 1]) if "--scene" in sys.argv else {}
+sim = BrushingSim(get_physics(version).scene_config(wig, **scene))
 sim.reset(seed)
 print(f"roots z {sim.hair_top:.3f} m, highest stroke start {sim.start_height(1.0):.3f} m")
 edges = np.array([0, 0.008, 0.02, 0.04, 0.06, 0.08, 0.12, 0.2, 1.0])  # depth below the roots [m]

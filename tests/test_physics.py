@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from hairbrush_env.brush import get_brush
-from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS
+from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS, V3_PHYSICS
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
 
@@ -19,7 +19,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -35,8 +35,45 @@ def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
     assert ENV_IDS["HairBrush-v2"][2] == ENV_IDS["HairBrushContinuous-v2"][2] == V2_PHYSICS == v2.env_kwargs()
 
 
+def _pairs_parted_by_a_tine(version: str, wig: str) -> list[bool]:
+    """For each entwined pair of ``wig`` under ``version``: whether a tine of the version's comb passes between the
+    pair's two roots across the curtain (a tine runs along x, so only the roots' y tells), with room for the tine
+    and a strand on both sides."""
+    import numpy as np
+
+    from hairbrush_env.hair import wig_layout
+
+    v = get_physics(version)
+    layout, brush = wig_layout(v.wig(wig)), get_brush(v.brush)
+    tines = (np.arange(brush.columns) - 0.5 * (brush.columns - 1)) * brush.column_pitch
+    room = brush.tine_radius + layout.wig.strand_radius
+    out = []
+    for i, j in layout.pairs:
+        lo, hi = sorted(layout.roots[[i, j], 1])
+        out.append(bool(np.any((tines > lo + room) & (tines < hi - room))))
+    return out
+
+
+def test_v3_is_v2_with_pairs_only_and_a_comb_spanning_them() -> None:
+    """v3 changes only the groups (pairs, no triples) and the comb's width. Why: under v2 a triple's strand 0 hangs
+    on the line of the tine through the group's axis, so its two pairs have no tine cleanly between their roots;
+    the tine pushes strand 0 to one side and parts one of them, and the other keeps its link through every stroke
+    (docs/detangling.md, *What holds the link under v2*). Under v3 every pair of every preset has a tine between
+    its roots, and the wider comb spans the twelve-pair curtain."""
+    v2, v3 = get_physics("v2"), get_physics("v3")
+    assert {k: v3.wig_fields[k] for k in v2.wig_fields} == dict(v2.wig_fields)
+    assert v3.wig_fields["n_triples"] == 0 and get_brush(v3.brush).columns == get_brush(v2.brush).columns + 2
+    assert ENV_IDS["HairBrush-v3"][2] == ENV_IDS["HairBrushContinuous-v3"][2] == V3_PHYSICS == v3.env_kwargs()
+    w = v3.wig(get_wig("curly"))
+    assert (w.n_strands, w.n_groups) == (24, 12)
+    v2_parted = _pairs_parted_by_a_tine("v2", "curly")
+    assert [k for k, ok in enumerate(v2_parted) if not ok] == [0, 1, 3, 4]  # triples (0, 1, 2), (3, 4, 5)
+    for name in ("wavy", "loose_curl", "curly", "tight_curl", "coily", "held_out_curly"):
+        assert all(_pairs_parted_by_a_tine("v3", name)), name
+
+
 def test_unknown_version_is_refused() -> None:
-    with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1, v2"):
+    with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1, v2, v3"):
         get_physics("v9")
 
 

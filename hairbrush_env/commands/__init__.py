@@ -52,13 +52,11 @@ def executor_from_args(args: argparse.Namespace):
 
 def add_physics_arg(parser: argparse.ArgumentParser) -> None:
     """``--physics``: the version of the brushing physics (:mod:`hairbrush_env.physics`; vN = ``HairBrush-vN``)."""
-    from ..physics import PHYSICS
+    from ..physics import PHYSICS, physics_help
 
     parser.add_argument(
         "--physics",
         choices=list(PHYSICS),
         default="v0",
-        help="brushing physics: v0 (HairBrush-v0's), v1 (self-colliding strands, hair-hair friction 0.15, "
-        "soft comb; HairBrush-v1's) or v2 (v1 with a tenth of the joint damping, stiffer wisps and drag on the "
-        "strands; HairBrush-v2's)",
+        help=f"brushing physics, vN = HairBrush-vN's: {physics_help()}",
     )

@@ -107,13 +107,13 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
         "rollout", help="headless rollout of a policy on a brushing env (recording, video, plot)"
     )
     from ..envs import ENV_IDS
+    from ..physics import physics_help
 
     p.add_argument(
         "--env",
         default="HairBrush-v0",
         choices=list(ENV_IDS),
-        help="env id (v1: self-colliding strands, hair-hair friction 0.15, soft comb; v2: v1 with less joint damping, "
-        "stiffer wisps and drag on the strands; hairbrush_env.physics)",
+        help=f"env id; its version's physics: {physics_help()}",
     )
     p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(wig_choices())}")
     p.add_argument(

@@ -5,6 +5,7 @@
   (:class:`~hairbrush_env.envs.continuous.HairBrushContinuousEnv`).
 - ``HairBrush-v1``, ``HairBrushContinuous-v1`` — the same envs with the v1 physics (:data:`V1_PHYSICS`).
 - ``HairBrush-v2``, ``HairBrushContinuous-v2`` — the same envs with the v2 physics (:data:`V2_PHYSICS`).
+- ``HairBrush-v3``, ``HairBrushContinuous-v3`` — the same envs with the v3 physics (:data:`V3_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -21,6 +22,7 @@ __all__ = [
     "STROKE_ENV_IDS",
     "V1_PHYSICS",
     "V2_PHYSICS",
+    "V3_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -35,6 +37,9 @@ V1_PHYSICS: dict = PHYSICS["v1"].env_kwargs()
 #: What v2 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v2"]`` (v1 with a tenth of the joint damping,
 #: stiffer wisps and a quadratic drag on the strands while they are brushed).
 V2_PHYSICS: dict = PHYSICS["v2"].env_kwargs()
+#: What v3 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v3"]`` (v2 with every group a pair, the
+#: comb two tines wider).
+V3_PHYSICS: dict = PHYSICS["v3"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -52,6 +57,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V2_PHYSICS,
+    ),
+    "HairBrush-v3": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V3_PHYSICS),
+    "HairBrushContinuous-v3": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V3_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

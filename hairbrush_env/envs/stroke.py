@@ -133,6 +133,9 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       (`hairbrush_env.envs.V1_PHYSICS`; docs/envs.md, *Versions*). Same spaces, rewards and episode rules.
     - v2 (issue #11): v1 with a tenth of the strands' joint damping, wisps of cohesion 16 and a quadratic drag on the
       strands while they are brushed (`hairbrush_env.envs.V2_PHYSICS`). Same spaces, rewards and episode rules.
+    - v3 (issue #11): v2 with every group of strands a pair (no triples, which one tine cannot part) and the comb
+      two tines wider to span the twelve pairs (`hairbrush_env.envs.V3_PHYSICS`). Same spaces, rewards and episode
+      rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
