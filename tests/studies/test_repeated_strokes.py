@@ -255,3 +255,20 @@ def test_fig_3_6_curly_under_v3_reduced():
     assert first >= PAIN_THRESHOLD and second < 0.6 * first, (first, second)
     assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
     assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+
+
+@pytest.fixture(scope="module")
+def six_strokes_v3() -> dict[tuple[str, int], list[dict]]:
+    return {(w, s): _six_strokes_under("v3", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
+
+
+@pytest.mark.slow
+def test_fig_3_6_under_v3_physics(six_strokes_v3):
+    """Fig. 3.6(i) whole under v3 (``hairbrush repeat --physics v3 --wigs curly,coily --seeds 3``), on every series:
+    every later stroke reads less than the first (first 8.6–12.4 N), eq. 3.4 is met within six strokes (at strokes
+    3–6), six strokes leave ≤ 30 % of the entanglement (measured 0.16–0.19), and no strand crosses another or comes
+    closer than half its diameter to itself (min 1.21)."""
+    _assert_falls_from_the_first_and_plateaus(dict(enumerate(six_strokes_v3.values())))
+    for rows in six_strokes_v3.values():
+        assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
+        assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
