@@ -21,8 +21,9 @@ fields applied to every wig it brushes, presets and custom wigs alike.
 - ``v3``: v2 with every group a pair (``n_triples = 0``: twelve pairs of the default 24 strands) and the comb two
   tines wider to span them (``wide_soft_comb``). A comb's tines run along the brush's depth and part strands only
   by where they hang across it; one tine through a triple's axis parts one strand from the other two, whose link
-  then has no way out. Under v2 those pairs kept 0.14 of curly's link after six full strokes; without triples six
-  full strokes leave about 0.2 on curly and coily (docs/detangling.md, *What holds the link under v2*).
+  then has no way out. Under v2 those pairs kept 0.14 of curly's link after six full strokes. Under v3 repeated
+  full strokes on curly and coily read their largest force first, plateau by eq. 3.4 and leave 0.16–0.19 on all
+  six series, Fig. 3.6(i) whole (docs/detangling.md, *What holds the link under v2* and *HairBrush-v3*).
 """
 
 from __future__ import annotations
