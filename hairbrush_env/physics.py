@@ -59,7 +59,15 @@ class PhysicsVersion:
         from .hair import get_wig
 
         config = get_wig(wig)
-        return config.replace(**self.wig_fields) if self.wig_fields else config
+        if not self.wig_fields:
+            return config
+        try:
+            return config.replace(**self.wig_fields)
+        except ValueError as exc:  # e.g. an odd n_strands under v3, which has no triples to make it up
+            fields = ", ".join(f"{k}={v!r}" for k, v in self.wig_fields.items())
+            raise ValueError(
+                f"wig {config.name!r} under physics {self.name} (which sets {fields}): {exc}"
+            ) from None
 
     def scene_config(self, wig: Any, **fields: Any):
         """A :class:`~hairbrush_env.scene.SceneConfig` brushing ``wig`` under this version."""

@@ -72,6 +72,13 @@ def test_v3_is_v2_with_pairs_only_and_a_comb_spanning_them() -> None:
         assert all(_pairs_parted_by_a_tine("v3", name)), name
 
 
+def test_a_wig_v3_cannot_build_names_the_version() -> None:
+    """25 strands need a triple; v3 has none, and its error says so."""
+    odd = get_wig("curly").replace(name="odd", n_strands=25, n_triples=1)
+    with pytest.raises(ValueError, match=r"wig 'odd' under physics v3 \(which sets .*n_triples=0\)"):
+        get_physics("v3").wig(odd)
+
+
 def test_unknown_version_is_refused() -> None:
     with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1, v2, v3"):
         get_physics("v9")
