@@ -43,7 +43,7 @@ def _cmd_compare(args: argparse.Namespace) -> int:
 
 def _add_compare(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
-        "compare", help="run a policy x wig grid on HairBrush-v0, -v1 or -v2 (CSV, Markdown summary, plots)"
+        "compare", help="run a policy x wig grid on any HairBrush-vN physics (CSV, Markdown summary, plots)"
     )
     p.add_argument(
         "--wigs",
