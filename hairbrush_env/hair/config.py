@@ -102,7 +102,9 @@ class WigConfig:
     n_strands : int
         Number of wisps (≥ 2); ``n_strands − 3·n_triples`` must be even (the rest are pairs).
     n_triples : int
-        Number of 3-strand groups (the thesis sees mostly pairs and a few triples, Fig. 2.1d).
+        Number of 3-strand groups (the thesis sees mostly pairs and a few triples, Fig. 2.1d). A comb parts strands
+        only by where they hang across it, so one tine through a triple parts one strand from the other two, whose
+        link stays; ``HairBrush-v3`` sets 0 (docs/detangling.md, *What holds the link under v2*).
     strand_radius : float
         Wisp radius ``r_w`` (contact, mass and stiffness).
     young : float or None
