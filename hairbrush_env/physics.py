@@ -76,37 +76,33 @@ class PhysicsVersion:
         return SceneConfig(wig=self.wig(wig), brush=self.brush, **fields)
 
 
+# Each version's wig fields are the one before's plus what it changes.
+_V1_WIG_FIELDS: Mapping[str, Any] = {"self_collision": True, "friction": 0.15}
+_V2_WIG_FIELDS: Mapping[str, Any] = {
+    **_V1_WIG_FIELDS,
+    "damping": 0.002,
+    "young": 1.6e8,
+    "drag_density": 1000.0,
+}
+
 PHYSICS: Mapping[str, PhysicsVersion] = {
     "v0": PhysicsVersion("v0", summary="rigid comb, hair-hair friction 0.3"),
     "v1": PhysicsVersion(
         "v1",
         brush="soft_comb",
-        wig_fields={"self_collision": True, "friction": 0.15},
+        wig_fields=_V1_WIG_FIELDS,
         summary="self-colliding strands, hair-hair friction 0.15, soft comb",
     ),
     "v2": PhysicsVersion(
         "v2",
         brush="soft_comb",
-        wig_fields={
-            "self_collision": True,
-            "friction": 0.15,
-            "damping": 0.002,
-            "young": 1.6e8,
-            "drag_density": 1000.0,
-        },
+        wig_fields=_V2_WIG_FIELDS,
         summary="v1 with a tenth of the joint damping, stiffer wisps and drag on the strands",
     ),
     "v3": PhysicsVersion(
         "v3",
         brush="wide_soft_comb",
-        wig_fields={
-            "self_collision": True,
-            "friction": 0.15,
-            "damping": 0.002,
-            "young": 1.6e8,
-            "drag_density": 1000.0,
-            "n_triples": 0,
-        },
+        wig_fields={**_V2_WIG_FIELDS, "n_triples": 0},
         summary="v2 with every group a pair and a comb two tines wider",
     ),
 }

@@ -18,10 +18,9 @@ import numpy as np
 
 from hairbrush_env.physics import get_physics
 from hairbrush_env.scene import BrushingSim
-from hairbrush_env.topology.gauss import link_density
 
 wig, seed, n = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
-per_pair = "--pairs" in sys.argv[4:]
+per_pair_rows = "--pairs" in sys.argv[4:]
 version = sys.argv[sys.argv.index("--physics") + 1] if "--physics" in sys.argv else "v0"
 scene = json.loads(sys.argv[sys.argv.index("--scene") + 1]) if "--scene" in sys.argv else {}
 sim = BrushingSim(get_physics(version).scene_config(wig, **scene))
@@ -32,21 +31,15 @@ edges = np.array([0, 0.008, 0.02, 0.04, 0.06, 0.08, 0.12, 0.2, 1.0])  # depth be
 
 def report(tag: str) -> None:
     meter = sim.entanglement_meter
-    band = meter.link_by_depth(sim.data, edges)
+    per_pair = meter.pair_link_by_depth(sim.data, edges)
+    band = per_pair.sum(axis=0)
     entwined, made = meter.breakdown(sim.data)
-    if per_pair:
-        curves = sim.hair_curves()
-        for i, j in meter.pairs:
-            a, b = curves[i], curves[j]
-            _, lam = link_density(a, b)
-            ell = lam * np.linalg.norm(np.diff(0.5 * (a + b), axis=0), axis=1)
-            depth = sim.hair_top - 0.25 * (a[:-1, 2] + a[1:, 2] + b[:-1, 2] + b[1:, 2])
-            mine = np.zeros(len(band))
-            np.add.at(mine, np.clip(np.digitize(depth, edges) - 1, 0, len(band) - 1), ell)
+    if per_pair_rows:
+        for (i, j), mine in zip(meter.pairs, per_pair, strict=True):
             r = 1e3 * sim.layout.roots[[i, j]]
             print(
                 f"  pair ({i},{j}) roots x {r[0, 0]:+.1f} {r[1, 0]:+.1f} y {r[0, 1]:+.1f} {r[1, 1]:+.1f} mm:",
-                f"Lk {ell.sum():+.2f};",
+                f"Lk (built-in sense) {mine.sum():+.2f};",
                 " ".join(
                     f"{1e3 * edges[q]:.0f}-{1e3 * edges[q + 1]:.0f}:{mine[q]:+.2f}"
                     for q in range(len(mine))

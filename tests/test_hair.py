@@ -162,6 +162,9 @@ def test_link_by_depth_spreads_each_pairs_link_along_it() -> None:
     bands = meter.link_by_depth(data, [0.0, 0.02, 0.05, 1.0])
     assert bands.sum() == pytest.approx(np.abs(layout.pair_link).sum(), rel=1e-9)
     assert np.all(bands > 0.0)
+    per_pair = meter.pair_link_by_depth(data, [0.0, 0.02, 0.05, 1.0])
+    np.testing.assert_allclose(per_pair.sum(axis=1), meter.built_in_sign * meter.pair_links(data), rtol=1e-9)
+    np.testing.assert_allclose(per_pair.sum(axis=0), bands)
     deeper = meter.link_by_depth(data, [0.0, 0.02, 0.05, 5.0])
     np.testing.assert_allclose(deeper, bands)
     with pytest.raises(ValueError, match="depths"):

@@ -85,24 +85,29 @@ class Entanglement:
         return int(np.count_nonzero(lk >= CROSS_LINK_THRESHOLD))
 
     def link_by_depth(self, data: mujoco.MjData, depths: Sequence[float]) -> np.ndarray:
-        """Where along the strands the entwined pairs' link sits: ``Σ`` over the pairs of their link in their
-        built-in sense (so undone or reversed turns count negative), split into bands of depth below the roots
-        ``depths[k] ≤ depth < depths[k+1]`` [m] (ascending; a segment deeper than the last edge joins the last
-        band). Each pair's link is spread along it by its link density (``topology.link_density``), so the bands
-        sum to ``Σ sign₀ Lk`` over the pairs. The roots' height is the highest root."""
+        """Where along the strands the entwined pairs' link sits: :meth:`pair_link_by_depth` summed over the
+        pairs, one value per depth band."""
+        return self.pair_link_by_depth(data, depths).sum(axis=0)
+
+    def pair_link_by_depth(self, data: mujoco.MjData, depths: Sequence[float]) -> np.ndarray:
+        """Each entwined pair's link in its built-in sense (so undone or reversed turns count negative), split into
+        bands of depth below the roots ``depths[k] ≤ depth < depths[k+1]`` [m] (ascending; a segment deeper than
+        the last edge joins the last band): ``(n_pairs, n_bands)``. A pair's link is spread along it by its link
+        density (``topology.link_density``), so its row sums to ``sign₀ Lk``. The roots' height is the highest
+        root."""
         edges = np.asarray(depths, dtype=float)
         if edges.ndim != 1 or edges.size < 2 or np.any(np.diff(edges) <= 0):
             raise ValueError(f"depths: need >= 2 ascending band edges [m], got {depths!r}")
         curves = self.curve_array(data)
         top = float(curves[:, 0, 2].max())
-        bands = np.zeros(edges.size - 1)
-        for (i, j), sign in zip(self.pairs, self.built_in_sign, strict=True):
+        bands = np.zeros((len(self.pairs), edges.size - 1))
+        for row, ((i, j), sign) in enumerate(zip(self.pairs, self.built_in_sign, strict=True)):
             a, b = curves[i], curves[j]
             _, lam = link_density(a, b)
             link = lam * np.linalg.norm(np.diff(0.5 * (a + b), axis=0), axis=1)
             depth = top - 0.25 * (a[:-1, 2] + a[1:, 2] + b[:-1, 2] + b[1:, 2])
-            k = np.clip(np.searchsorted(edges, depth, side="right") - 1, 0, bands.size - 1)
-            np.add.at(bands, k, sign * link)
+            k = np.clip(np.searchsorted(edges, depth, side="right") - 1, 0, edges.size - 2)
+            np.add.at(bands[row], k, sign * link)
         return bands
 
     def link_matrix(self, data: mujoco.MjData) -> np.ndarray:
