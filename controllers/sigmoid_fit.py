@@ -59,13 +59,16 @@ def max_safe_length(env, seeds: Sequence[int], *, tol: float = 0.05) -> tuple[fl
     return lo, trials
 
 
-def safe_point(wig: str, seeds: Sequence[int], tol: float, width: int, height: int) -> SafePoint:
-    """One wig of the fit: its vision R_c (mean over ``seeds``) and its largest safe b_l (one cell of
-    ``scripts/fit_sigmoid.py``, run by :mod:`hairbrush_env.executor` in this process, local workers or Ray)."""
+def safe_point(
+    wig: str, seeds: Sequence[int], tol: float, width: int, height: int, physics: str = "v0"
+) -> SafePoint:
+    """One wig of the fit under ``HairBrush-{physics}``: its vision R_c (mean over ``seeds``) and its largest safe
+    b_l (one cell of ``scripts/fit_sigmoid.py``, run by :mod:`hairbrush_env.executor` in this process, local
+    workers or Ray)."""
     from controllers.vision import curliness
     from hairbrush_env.envs import make_version
 
-    env = make_version("HairBrush-v0", wig=wig, obs_mode="state+image", width=width, height=height)
+    env = make_version(f"HairBrush-{physics}", wig=wig, obs_mode="state+image", width=width, height=height)
     try:
         rc = float(
             np.mean([curliness(env.reset(seed=s)[0]["image"], roi=env.unwrapped.hair_roi()) for s in seeds])

@@ -85,6 +85,9 @@ _V2_WIG_FIELDS: Mapping[str, Any] = {
     "drag_density": 1000.0,
 }
 
+_V3_WIG_FIELDS: Mapping[str, Any] = {**_V2_WIG_FIELDS, "n_triples": 0}
+_V4_WIG_FIELDS: Mapping[str, Any] = {**_V3_WIG_FIELDS, "root_run": 0.5}
+
 PHYSICS: Mapping[str, PhysicsVersion] = {
     "v0": PhysicsVersion("v0", summary="rigid comb, hair-hair friction 0.3"),
     "v1": PhysicsVersion(
@@ -102,8 +105,14 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
     "v3": PhysicsVersion(
         "v3",
         brush="wide_soft_comb",
-        wig_fields={**_V2_WIG_FIELDS, "n_triples": 0},
+        wig_fields=_V3_WIG_FIELDS,
         summary="v2 with every group a pair and a comb two tines wider",
+    ),
+    "v4": PhysicsVersion(
+        "v4",
+        brush="wide_soft_comb",
+        wig_fields=_V4_WIG_FIELDS,
+        summary="v3 with each pair curling from a different distance below its roots",
     ),
 }
 

@@ -31,6 +31,7 @@ from . import hair as hairmod
 from .arm_control import CartesianController, plan_stroke
 from .constants import PAIN_THRESHOLD_N
 from .hair.drag import StrandDrag
+from .parting import pairs_parted
 from .scene_build import (
     BRUSH_TCP,
     HEAD_POS,
@@ -292,6 +293,18 @@ class BrushingSim:
     def pair_links(self) -> np.ndarray:
         """Signed open-curve link of each entwined pair (``layout.pairs``)."""
         return self.entanglement_meter.pair_links(self.data)
+
+    def pairs_parted(self) -> np.ndarray:
+        """Whether a tine of the brush, where it is now, lies between each entwined pair's two strands at the brush's
+        height (:func:`hairbrush_env.parting.pairs_parted`, in ``layout.pairs`` order): the pairs a pull from here
+        can comb out."""
+        tcp = self.brush_position()
+        b = self.brush
+        tines_y = (np.arange(b.columns) - 0.5 * (b.columns - 1)) * b.column_pitch + tcp[1]
+        room = b.tine_radius + self.wig.strand_radius
+        return pairs_parted(
+            self.hair_curve_array(), self.entanglement_meter.pairs, tines_y, float(tcp[2]), room
+        )
 
     def hair_curves(self) -> list[np.ndarray]:
         """Current centerlines of all strands (world)."""

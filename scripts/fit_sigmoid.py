@@ -1,6 +1,7 @@
 """Fit the sigmoid steepness k of eq. 3.3 in simulation (thesis Fig. 3.9) — thin wrapper over controllers.sigmoid_fit.
 
-    python scripts/fit_sigmoid.py [--seeds 0,1] [--tol 0.05] [--wigs all] [--workers N | --ray auto] --out runs/sigmoid
+    python scripts/fit_sigmoid.py [--physics v3] [--seeds 0,1] [--tol 0.05] [--wigs all] [--workers N | --ray auto] \
+        --out runs/sigmoid
 
 Writes OUT/sigmoid_fit.json (k, bounds, per-wig safe lengths), OUT/sigmoid_fit.png, OUT/safe_points.json (per wig,
 as each finishes: a rerun with the same settings resumes) and OUT/cells.csv (per-wig timing and errors).
@@ -21,7 +22,7 @@ import numpy as np
 import hairbrush_env  # noqa: F401
 from controllers.sigmoid import THESIS_K
 from controllers.sigmoid_fit import SafePoint, fit_k, plot_fit, safe_point
-from hairbrush_env.commands import add_executor_args, add_webcam_args, executor_from_args
+from hairbrush_env.commands import add_executor_args, add_physics_arg, add_webcam_args, executor_from_args
 from hairbrush_env.commands.checks import number_list, positive, seed, wig_names
 from hairbrush_env.executor import CellLog, CellsFailed, run_cells
 from hairbrush_env.io import write_json
@@ -33,20 +34,21 @@ def main() -> None:
     p.add_argument("--seeds", type=number_list(seed), default="0,1", help="pre-brushed wigs tried per b_l")
     p.add_argument("--tol", type=positive, default=0.05, help="bisection tolerance on b_l")
     add_webcam_args(p)
+    add_physics_arg(p)
     add_executor_args(p, workers=1, what="wigs")
     p.add_argument("--out", default="runs/sigmoid")
     a = p.parse_args()
     wigs, seeds = a.wigs, [int(s) for s in a.seeds]
     # per-wig points, rewritten after every wig: a rerun with the same settings skips the wigs already found
     out = Path(a.out)
-    settings = {"seeds": seeds, "tol": a.tol, "width": a.width, "height": a.height}
+    settings = {"seeds": seeds, "tol": a.tol, "width": a.width, "height": a.height, "physics": a.physics}
     saved = json.loads((out / "safe_points.json").read_text()) if (out / "safe_points.json").exists() else {}
     found = (
         {w: SafePoint(**pt) for w, pt in saved.get("points", {}).items()}
         if saved.get("settings") == settings
         else {}
     )
-    cells = [(wig, (wig, seeds, a.tol, a.width, a.height)) for wig in wigs if wig not in found]
+    cells = [(wig, (wig, seeds, a.tol, a.width, a.height, a.physics)) for wig in wigs if wig not in found]
     executor = executor_from_args(a)
     log = CellLog(out / "cells.csv", executor)
     for outcome in run_cells(
@@ -70,6 +72,7 @@ def main() -> None:
             "k_lower": lo,
             "k_upper": hi if np.isfinite(hi) else None,  # None: unbounded (strict JSON has no Infinity)
             "thesis_k": THESIS_K,
+            "physics": a.physics,
             "points": [pt.__dict__ for pt in points],
         },
     )

@@ -71,6 +71,9 @@ def test_wig_lists_mix_names_and_sets() -> None:
         ({"drag_density": 1e3, "rod_kind": "flex", "rest_splay": 0.0}, "drag_density"),
         ({"quadratic_damping": 1e-4, "rod_kind": "flex", "rest_splay": 0.0}, "quadratic_damping"),
         ({"self_collision": 1}, "self_collision"),
+        ({"root_run": -0.1}, "root_run"),
+        ({"root_run": 1.5}, "root_run"),
+        ({"root_run": float("nan")}, "root_run"),
     ],
 )
 def test_bad_config_names_field(changes: dict, field: str) -> None:
@@ -190,6 +193,41 @@ def test_group_rows_sets_the_depth_of_the_curtain() -> None:
     np.testing.assert_allclose(lay.axes[:, 0], 0.0)
     np.testing.assert_allclose(np.diff(np.sort(lay.axes[:, 1])), lay.spacing)
     assert lay.spacing == pytest.approx(0.04) and lay.max_cross_link < 0.4
+
+
+def test_root_run_spreads_the_pairs_helix_phases() -> None:
+    """``root_run``: each group hangs straight below its roots for its own part of ``root_run`` pitches, then curls;
+    the roots stay where they were (across the tines), the strands keep their length, and at one height below the
+    roots the pairs' helix phases differ, where without runs they are all equal (docs/detangling.md, *Where the comb
+    goes in*)."""
+    base = hair.PRESETS["curly"].replace(n_triples=0)
+    plain, spread = hair.wig_layout(base), hair.wig_layout(base.replace(root_run=0.5))
+    np.testing.assert_allclose(spread.roots, plain.roots)
+    runs = [base.replace(root_run=0.5).root_run_length(g) for g in range(base.n_groups)]
+    assert runs[0] == 0.0 and 0.0 < max(runs) < 0.5 * base.pitch
+    assert len({round(r, 6) for r in runs}) == base.n_groups  # every group its own run
+    for g, members in enumerate(spread.groups):
+        for s in members:
+            curve = spread.curves[s]
+            assert np.linalg.norm(np.diff(curve, axis=0), axis=1).sum() == pytest.approx(
+                base.length, rel=0.01
+            )
+            straight = curve[-curve[:, 2] <= runs[g] + 1e-12]
+            np.testing.assert_allclose(straight[:, :2] - curve[0, :2], 0.0, atol=1e-12)  # hangs straight down
+
+    def phases(lay: hair.WigLayout, depth: float) -> np.ndarray:
+        """Angle of each pair's first strand about the pair axis where it first comes down to ``depth``."""
+        out = []
+        for (i, _), axis in zip(lay.pairs, lay.axes, strict=True):
+            c = lay.curves[i]
+            k = int(np.nonzero(-c[:, 2] >= depth)[0][0])
+            out.append(np.arctan2(c[k, 1] - axis[1], c[k, 0] - axis[0]) % np.pi)
+        return np.array(out)
+
+    assert np.ptp(phases(plain, 0.03)) < 0.3  # one phase (to an edge's turn, 2π/8)
+    assert np.ptp(phases(spread, 0.03)) > 0.6 * np.pi
+    assert spread.max_cross_link < 0.4
+    np.testing.assert_allclose(np.abs(spread.pair_link), np.abs(plain.pair_link), rtol=0.05)
 
 
 @pytest.mark.parametrize("name", ["wavy", "curly", "coily"])

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from hairbrush_env.brush import get_brush
-from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS, V3_PHYSICS
+from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS, V3_PHYSICS, V4_PHYSICS
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
 
@@ -19,7 +19,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -70,6 +70,44 @@ def test_v3_is_v2_with_pairs_only_and_a_comb_spanning_them() -> None:
     assert [k for k, ok in enumerate(v2_parted) if not ok] == [0, 1, 3, 4]  # triples (0, 1, 2), (3, 4, 5)
     for name in ("wavy", "loose_curl", "curly", "tight_curl", "coily", "held_out_curly"):
         assert all(_pairs_parted_by_a_tine("v3", name)), name
+
+
+def test_v4_is_v3_with_pairs_curling_from_different_depths() -> None:
+    v3, v4 = get_physics("v3"), get_physics("v4")
+    assert v4.brush == v3.brush
+    assert dict(v4.wig_fields) == {**v3.wig_fields, "root_run": 0.5}
+    assert ENV_IDS["HairBrush-v4"][2] == ENV_IDS["HairBrushContinuous-v4"][2] == V4_PHYSICS == v4.env_kwargs()
+    assert all(_pairs_parted_by_a_tine("v4", "curly"))  # the roots stay across the tines
+
+
+def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:
+    """How many entwined pairs have a tine between their strands at the first physics step of the pull."""
+    from hairbrush_env.scene import BrushingSim
+
+    sim = BrushingSim(get_physics(version).scene_config(wig))
+    sim.reset(seed)
+    z0 = sim.start_height(b_l)
+    seen: list[int] = []
+
+    def observe(s: BrushingSim) -> None:
+        tcp = s.brush_position()
+        if not seen and abs(tcp[0] - s.depth_x) < 2e-3 and tcp[2] < z0 - 1e-3:
+            seen.append(int(s.pairs_parted().sum()))
+
+    sim.add_step_observer(observe)
+    sim.stroke(b_l, abort_force=0.5)  # the pull stops at the first sample of 0.5 N, after the insertion
+    assert seen, "the pull never started"
+    return seen[0]
+
+
+def test_v4_comb_goes_in_between_pairs_where_v3_meets_them_head_on() -> None:
+    """Under v3 every pair of a one-row curtain curls from its roots in one phase, so at some start heights the comb
+    goes in with no tine between any pair's strands (curly, seed 0, b_l 0.7, 30 mm below the roots: 0 of 12, and the
+    stroke reads 1.05 N and leaves 1.06 of the link, against 12 of 12, 7.88 N and 0.42 at b_l 0.725). v4's root runs
+    spread the phases: measured 11 of 12 there (``scripts/probe_insertion.py``; docs/detangling.md, *Where the comb
+    goes in*)."""
+    assert _parted_after_insertion("v3", "curly", 0, 0.7) == 0
+    assert _parted_after_insertion("v4", "curly", 0, 0.7) >= 9
 
 
 def test_a_wig_v3_cannot_build_names_the_version() -> None:

@@ -6,6 +6,7 @@
 - ``HairBrush-v1``, ``HairBrushContinuous-v1`` — the same envs with the v1 physics (:data:`V1_PHYSICS`).
 - ``HairBrush-v2``, ``HairBrushContinuous-v2`` — the same envs with the v2 physics (:data:`V2_PHYSICS`).
 - ``HairBrush-v3``, ``HairBrushContinuous-v3`` — the same envs with the v3 physics (:data:`V3_PHYSICS`).
+- ``HairBrush-v4``, ``HairBrushContinuous-v4`` — the same envs with the v4 physics (:data:`V4_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -23,6 +24,7 @@ __all__ = [
     "V1_PHYSICS",
     "V2_PHYSICS",
     "V3_PHYSICS",
+    "V4_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -40,6 +42,9 @@ V2_PHYSICS: dict = PHYSICS["v2"].env_kwargs()
 #: What v3 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v3"]`` (v2 with every group a pair, the
 #: comb two tines wider).
 V3_PHYSICS: dict = PHYSICS["v3"].env_kwargs()
+#: What v4 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v4"]`` (v3 with each pair curling from a
+#: different distance below its roots, ``WigConfig.root_run``).
+V4_PHYSICS: dict = PHYSICS["v4"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -63,6 +68,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V3_PHYSICS,
+    ),
+    "HairBrush-v4": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V4_PHYSICS),
+    "HairBrushContinuous-v4": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V4_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

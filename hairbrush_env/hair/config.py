@@ -168,6 +168,16 @@ class WigConfig:
         ignore it): ``s`` times the mass and rotational inertia at the same weight, so that taut strands do not sink
         into each other (*Mass scaling* in :mod:`hairbrush_env.hair`). The preparation's shake forces the real mass
         (``density``), not the scaled one.
+    root_run : float
+        Straight run of curled strands below their roots, in curl pitches, spread over the groups: group ``g`` hangs
+        straight for ``root_run · u_g · P`` of its length, ``u_g = frac(g φ)`` (φ the golden ratio: neighbouring
+        groups far apart in ``[0, 1)``), before its helix starts, as locks whose curl sets in at different
+        distances from the scalp. Default 0: every group curls from its roots. In a curtain one group deep the groups
+        then share one helix phase at every height, so a comb inserted at some heights meets every pair head on and
+        parts none of them (curly, seed 0: 0 of 12 parted at 29.7 mm below the roots, 12 of 12 at 27.9 mm;
+        ``scripts/probe_insertion.py``, ``docs/detangling.md``, *Where the comb goes in*). ``0.5`` spreads the pairs'
+        phases over half a turn, every phase a pair can take (its two strands are half a turn apart). A group's
+        helix is shorter by its run, so its link is lower by up to ``root_run`` turns.
     self_collision : bool
         Contacts between non-adjacent segments of the same strand (:attr:`hairbrush_env.rods.RodSpec.selfcollide`).
         Off by default: then a strand's own segments can pass through each other, and brushing makes them (curly,
@@ -204,6 +214,7 @@ class WigConfig:
     group_rows: int | None = 1
     mass_scale: float = MASS_SCALE
     self_collision: bool = False
+    root_run: float = 0.0
 
     def __post_init__(self) -> None:
         _require(
@@ -285,6 +296,12 @@ class WigConfig:
         )
         _require(len(self.rgba) == 4, "rgba", "must have 4 entries", self.rgba)
         _require(
+            _finite(self.root_run) and 0.0 <= self.root_run <= 1.0,
+            "root_run",
+            "must be in [0, 1] curl pitches",
+            self.root_run,
+        )
+        _require(
             self.rod_kind in rods.ROD_KINDS, "rod_kind", f"must be one of {rods.ROD_KINDS}", self.rod_kind
         )
         _require(
@@ -342,10 +359,19 @@ class WigConfig:
         """Curl turns per strand = link of every entwined pair (``q₀ = l₀/P``, eq. 3.2, with the axial length)."""
         return self.length / self.arc_per_turn if self.curliness > 0 else 0.0
 
+    def root_run_length(self, group: int) -> float:
+        """Length [m] for which ``group`` hangs straight below its roots before it curls (:attr:`root_run`)."""
+        if self.curliness <= 0 or self.root_run == 0.0:
+            return 0.0
+        return self.root_run * self.pitch * ((group * _GOLDEN) % 1.0)
+
     @property
     def hanging_length(self) -> float:
-        """Axial (vertical) extent of the rest shape [m]."""
-        return self.turns * self.pitch if self.curliness > 0 else self.length
+        """Axial (vertical) extent of the rest shape [m] (of the longest-hanging group with :attr:`root_run`)."""
+        if self.curliness <= 0:
+            return self.length
+        run = max((self.root_run_length(g) for g in range(self.n_groups)), default=0.0)
+        return run + (self.length - run) / self.arc_per_turn * self.pitch
 
     @property
     def n_edges(self) -> int:
@@ -376,7 +402,8 @@ class WigConfig:
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 
-_LATE_FIELDS = ("quadratic_damping", "drag_density")
+_LATE_FIELDS = ("quadratic_damping", "drag_density", "root_run")
+_GOLDEN = 0.5 * (1.0 + math.sqrt(5.0))
 
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
 # hanging (curl "shrinkage" = 1 − 1/√(1 + (2πR_C)²)) even where the pulled-straight length is similar.

@@ -71,9 +71,20 @@ class WigLayout:
         return allp.min(axis=0), allp.max(axis=0)
 
 
-def _strand_curve(axis: np.ndarray, phase: float, wig: WigConfig, radius: float, turns: float) -> np.ndarray:
+def _strand_curve(
+    axis: np.ndarray, phase: float, wig: WigConfig, radius: float, turns: float, run: float = 0.0
+) -> np.ndarray:
     n = wig.n_edges
-    if wig.curliness > 0:
+    if wig.curliness > 0 and run > 0.0:
+        # Straight for ``run`` below the root, then the helix; points uniform in arc length. The helix part is as
+        # long as a polygonal helix of ``turns`` turns would be over the rest of the strand (``_polygon_turns``).
+        arc = wig.arc_per_turn
+        helix_arc = (wig.length - run) * turns / wig.turns
+        s = np.linspace(0.0, run + helix_arc, n + 1)
+        along = np.clip(s - run, 0.0, None)  # arc length along the helix
+        depth = np.minimum(s, run) + along * wig.pitch / arc
+        phi = phase + wig.handedness * 2.0 * math.pi * along / arc
+    elif wig.curliness > 0:
         # Uniform in z is uniform in arc length on a helix, so all edges have the same rest length.
         depth = np.linspace(0.0, turns * wig.pitch, n + 1)
         phi = phase + wig.handedness * 2.0 * math.pi * depth / wig.pitch
@@ -159,7 +170,10 @@ def wig_layout(wig: WigConfig, *, prefix: str = "hair") -> WigLayout:
         axes = np.array(
             [[(i - 0.5 * (rows - 1)) * spacing, (j - 0.5 * (cols - 1)) * spacing] for i, j in cells]
         )
-        curves = [_strand_curve(axes[owner[s]], phases[s], wig, radius, turns) for s in range(wig.n_strands)]
+        curves = [
+            _strand_curve(axes[owner[s]], phases[s], wig, radius, turns, wig.root_run_length(int(owner[s])))
+            for s in range(wig.n_strands)
+        ]
         dmin, lkmax = math.inf, 0.0
         for a in range(wig.n_strands):
             for b in range(a + 1, wig.n_strands):
