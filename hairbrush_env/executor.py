@@ -238,6 +238,9 @@ def _run_pool(fn, args: dict, keys: list, workers: int, unfinished: list) -> Ite
 
     pool = ProcessPoolExecutor(max_workers=workers, mp_context=multiprocessing.get_context("spawn"))
     pending = {pool.submit(call_cell, fn, k, args[k]): k for k in keys}
+    # A `kill` (SIGTERM) of this process would end it without the cleanup below and leave its workers running their
+    # cells to the end; as SystemExit it runs the cleanup.
+    restore = _exit_on_sigterm()
     try:
         while pending:
             done, _ = wait(pending, return_when=FIRST_COMPLETED)
@@ -263,6 +266,22 @@ def _run_pool(fn, args: dict, keys: list, workers: int, unfinished: list) -> Ite
             for proc in list(getattr(pool, "_processes", {}).values()):
                 proc.terminate()
         pool.shutdown(wait=True, cancel_futures=True)
+        restore()
+
+
+def _exit_on_sigterm():
+    """Turn SIGTERM into ``SystemExit(143)`` in the main thread; returns a function that restores the old handler."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        return lambda: None
+
+    def _exit(signum, frame):
+        raise SystemExit(128 + signum)
+
+    old = signal.signal(signal.SIGTERM, _exit)
+    return lambda: signal.signal(signal.SIGTERM, old)
 
 
 def _ray_init(executor: ExecutorConfig) -> tuple[bool, str | None]:

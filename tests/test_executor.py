@@ -111,6 +111,47 @@ def test_closing_the_stream_stops_the_local_workers() -> None:
     assert first.ok and time.perf_counter() - t0 < 5.0
 
 
+def test_a_killed_run_stops_its_local_workers(tmp_path) -> None:
+    """``kill`` (SIGTERM) of a process running a grid on local workers stops the workers too, instead of leaving
+    them to run their cells to the end."""
+    import signal
+    import subprocess
+    import time
+
+    (tmp_path / "grid.py").write_text(
+        "import os, sys, time\n"
+        "from hairbrush_env.executor import ExecutorConfig, run_cells\n"
+        "def cell(x):\n"
+        "    open(f'pid{x}', 'w').write(str(os.getpid()))\n"
+        "    time.sleep(60)\n"
+        "if __name__ == '__main__':\n"
+        "    for _ in run_cells(cell, [(x, (x,)) for x in range(2)], executor=ExecutorConfig(workers=2),\n"
+        "                       progress=False):\n"
+        "        pass\n"
+    )
+    proc = subprocess.Popen([sys.executable, "grid.py"], cwd=tmp_path)
+    pid_files = [tmp_path / f"pid{x}" for x in range(2)]
+    deadline = time.monotonic() + 60
+    while not all(f.exists() and f.read_text() for f in pid_files):
+        assert time.monotonic() < deadline and proc.poll() is None, "the workers never started"
+        time.sleep(0.1)
+    workers = [int(f.read_text()) for f in pid_files]
+    proc.send_signal(signal.SIGTERM)
+    assert proc.wait(timeout=20) == 128 + signal.SIGTERM
+
+    def alive(pid: int) -> bool:
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return False
+        return True
+
+    deadline = time.monotonic() + 10
+    while any(alive(p) for p in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not any(alive(p) for p in workers)
+
+
 def _sleeping_cell(x: int) -> int:
     import time
 
