@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1``/``-v2``/``-v3`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v4`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -24,6 +24,10 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   then has no way out. Under v2 those pairs kept 0.14 of curly's link after six full strokes. Under v3 repeated
   full strokes on curly and coily read their largest force first, plateau by eq. 3.4 and leave 0.16–0.19 on all
   six series, Fig. 3.6(i) whole (docs/detangling.md, *What holds the link under v2* and *HairBrush-v3*).
+- ``v4``: v3 with each pair hanging straight below its roots for its own part of half a curl pitch before it curls
+  (``root_run = 0.5``). Under v3 all pairs curl from their roots in one phase, so a comb put in at some start heights
+  meets every pair head on and parts none (curly, seed 0: 0 of 12 at b_l 0.7 and 0.9, 12 of 12 at 0.725 and 0.95);
+  under v4 it parts 9–11 of 12 at every start height tried (docs/detangling.md, *Where the comb goes in*).
 """
 
 from __future__ import annotations

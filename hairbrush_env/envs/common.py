@@ -18,6 +18,10 @@ __all__ = ["FINISH_FORCE_TOLERANCE_N", "LOAD_CELL_CAPACITY_N", "PAIN_THRESHOLD_N
 MAX_COUNT = 10_000.0
 
 
+#: Smallest entanglement [Σ|Lk|] the progress reward is normalized by: one shared turn of a pair (curled presets start
+#: with 30–60; straight hair with ~1e-4, by which any link brushing makes would be multiplied by 10⁴).
+PROGRESS_FLOOR = 1.0
+
 #: The reward terms every step reports in ``info`` (the reward is their sum).
 REWARD_TERMS = ("reward_progress", "reward_time", "reward_pain", "reward_finish")
 
@@ -26,8 +30,11 @@ REWARD_TERMS = ("reward_progress", "reward_time", "reward_pain", "reward_finish"
 class RewardConfig:
     """Weights of the reward terms (each term is reported in ``info``; the reward is their sum).
 
-    * progress: ``progress_weight · (E_prev − E_now) / E_initial`` — detangling progress, normalized so that a
-      fully detangled wig has collected ``progress_weight`` in total;
+    * progress: ``progress_weight · (E_prev − E_now) / max(E_initial, PROGRESS_FLOOR)`` — detangling progress,
+      normalized so that a fully detangled wig has collected ``progress_weight`` in total. The floor of one link
+      (:data:`PROGRESS_FLOOR`) is for straight hair, which starts with next to none (1e-4): brushing that links
+      two of its strands by 0.86 scored −43 000 against its initial 2e-4, swamping every other term
+      (``hairbrush compare --physics v3 --wigs straight``);
     * time: ``−time_weight · Δt`` with Δt the simulated brushing time of the step plus ``stroke_overhead_s`` per
       stroke (repositioning the brush — without it, many tiny strokes would look free);
     * pain: ``−pain_weight · Σ max(0, f − F_T)`` over the load-cell samples of the step, in newtons;
@@ -66,7 +73,7 @@ class RewardConfig:
         threshold: float,
         done: bool = False,
     ) -> dict[str, float]:
-        progress = self.progress_weight * (e_prev - e_now) / max(e_initial, 1e-12)
+        progress = self.progress_weight * (e_prev - e_now) / max(e_initial, PROGRESS_FLOOR)
         excess = np.clip(np.asarray(forces, dtype=float) - threshold, 0.0, None)
         return {
             "reward_progress": float(progress),

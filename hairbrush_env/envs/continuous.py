@@ -80,6 +80,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     - v1: v0 with the v1 physics of `HairBrush-v1` (self-colliding strands, hair–hair friction 0.15, soft comb).
     - v2: v0 with the v2 physics of `HairBrush-v2` (v1 with less joint damping, stiffer wisps, drag on the strands).
     - v3: v0 with the v3 physics of `HairBrush-v3` (v2 with every group a pair, the comb two tines wider).
+    - v4: v0 with the v4 physics of `HairBrush-v4` (v3 with each pair curling from a different depth below its roots).
     """
 
     def __init__(

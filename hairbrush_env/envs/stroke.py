@@ -128,7 +128,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     ## Version History
     - v0: initial release. Within v0 (issue #6): the finish bonus and the full-stroke action band were added, and
       the finish rule no longer counts strokes aborted at F_T. Issue #11: insertion and withdrawal went from 0.15 to 0.3
-      m/s.
+      m/s, and the progress reward divides by at least one link (`PROGRESS_FLOOR`; it only changes straight hair,
+      whose ~1e-4 of initial link made its returns −10⁴), in every version.
     - v1 (issue #11): v0 with self-colliding strands, hair–hair friction 0.15 and the soft (nylon) comb
       (`hairbrush_env.envs.V1_PHYSICS`; docs/envs.md, *Versions*). Same spaces, rewards and episode rules.
     - v2 (issue #11): v1 with a tenth of the strands' joint damping, wisps of cohesion 16 and a quadratic drag on the
@@ -136,6 +137,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     - v3 (issue #11): v2 with every group of strands a pair (no triples, which one tine cannot part) and the comb
       two tines wider to span the twelve pairs (`hairbrush_env.envs.V3_PHYSICS`). Same spaces, rewards and episode
       rules.
+    - v4 (issue #11): v3 with each pair hanging straight below its roots for its own part of half a curl pitch
+      before it curls (`WigConfig.root_run`), so that the pairs' helix phases differ and the comb parts most pairs
+      at any start height; under v3 it parted all or none (`hairbrush_env.envs.V4_PHYSICS`). Same spaces, rewards
+      and episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.

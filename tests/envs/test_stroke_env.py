@@ -251,6 +251,21 @@ def test_finish_bonus_outweighs_stalling_for_the_whole_episode():
     assert terms["reward_finish"] == 0.0 and set(terms) == set(RewardConfig.zero_terms())
 
 
+def test_progress_on_hair_with_almost_no_link_is_normalized_by_one_link():
+    """Straight hair starts with ~1e-4 of link; normalized by that, the 0.86 a stroke made scored −43 000. The
+    progress term divides by at least one link, and by the initial entanglement of any curled wig (30–60)."""
+    from hairbrush_env.envs.common import PROGRESS_FLOOR
+
+    cfg = RewardConfig()
+    made = cfg.terms(e_prev=2e-4, e_now=0.86, e_initial=2e-4, elapsed=0.0, forces=np.zeros(1), threshold=10.0)
+    assert PROGRESS_FLOOR == 1.0
+    assert made["reward_progress"] == pytest.approx(-cfg.progress_weight * (0.86 - 2e-4))
+    combed = cfg.terms(
+        e_prev=40.0, e_now=30.0, e_initial=40.0, elapsed=0.0, forces=np.zeros(1), threshold=10.0
+    )
+    assert combed["reward_progress"] == pytest.approx(cfg.progress_weight * 0.25)
+
+
 def test_aborted_full_strokes_never_finish(small_wig):
     """Eq. 3.4 only counts strokes that went through: two strokes aborted at F_T read ≈ F_T both, and used to end
     the episode (and, with the finish bonus, pay for it) although the brush never got through the hair."""
