@@ -76,7 +76,8 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
 
     ## Version History
-    - v0: initial release.
+    - v0: initial release. Issue #11: the progress reward divides by at least one link (`PROGRESS_FLOOR`; only
+      straight hair, with ~1e-4 of initial link, changes), in every version.
     - v1: v0 with the v1 physics of `HairBrush-v1` (self-colliding strands, hair–hair friction 0.15, soft comb).
     - v2: v0 with the v2 physics of `HairBrush-v2` (v1 with less joint damping, stiffer wisps, drag on the strands).
     - v3: v0 with the v3 physics of `HairBrush-v3` (v2 with every group a pair, the comb two tines wider).
