@@ -1,6 +1,7 @@
 """Exploration probe: does the comb go in *between* each pair's strands, against the stroke's start height?
 
-    python scripts/probe_insertion.py WIG SEED B_L[,B_L...] [--physics VERSION]   # e.g. curly 0 0.8,0.9,1 --physics v3
+    python scripts/probe_insertion.py WIG SEED B_L[,B_L...] [--physics VERSION] [--scene JSON]
+    # e.g. curly 0 0.8,0.9,1 --physics v3;  coily 0 1 --physics v4 --scene '{"approach_speed": 0.1}'
 
 A comb's tines run along x (into the curtain) and part a pair only if they enter with one strand on each side. An
 entwined pair is a double helix about its axis, and a tine through that axis meets the two strands side by side
@@ -15,6 +16,7 @@ Prints per b_l: the tines' depth below the roots, pairs parted before / after in
 maximum force and the fraction of the entanglement left (docs/detangling.md, *Where the comb goes in*).
 """
 
+import json
 import os
 import sys
 
@@ -25,7 +27,8 @@ from hairbrush_env.scene import BrushingSim
 wig, seed = sys.argv[1], int(sys.argv[2])
 lengths = [float(v) for v in sys.argv[3].split(",")]
 version = sys.argv[sys.argv.index("--physics") + 1] if "--physics" in sys.argv else "v0"
-sim = BrushingSim(get_physics(version).scene_config(wig))
+scene = json.loads(sys.argv[sys.argv.index("--scene") + 1]) if "--scene" in sys.argv else {}
+sim = BrushingSim(get_physics(version).scene_config(wig, **scene))
 pairs = sim.entanglement_meter.pairs
 
 for b_l in lengths:

@@ -133,6 +133,7 @@ def test_fig_3_7_under_v1() -> None:
     assert full[0] < 0.5 and full[-1] > PAIN_THRESHOLD, full
 
 
+@pytest.mark.slow
 def test_fig_3_6_ii_under_v3_reduced() -> None:
     """Fig. 3.6(ii) under ``HairBrush-v3``'s physics, reduced (seed 0, no abort): a tight_curl stroke reads more the
     longer it is (measured 3.27 < 7.08 < 9.13 N at b_l 0.33 / 0.67 / 1), and straight hair barely loads the comb
@@ -196,3 +197,19 @@ def test_fig_3_7_order_under_v3(fig_3_7_v3) -> None:
     t = fig_3_7_v3
     full = np.array([t[(name, 1.0)] for name in PRESETS])
     assert np.all(np.diff(full) > 0), full
+
+
+def test_fig_3_7_under_v4_reduced() -> None:
+    """Figs 3.6(ii) and 3.7 under ``HairBrush-v4``, reduced (seed 0, no abort): curly's stroke reads more the longer
+    it is (measured 3.58 < 5.52 < 7.83 N at b_l 0.33 / 0.67 / 1), and at b_l = 1 wavy < loose_curl < curly (4.24 <
+    6.46 < 7.83 N; under v3 wavy read about what loose_curl read and curly's force jumped only near b_l = 1)."""
+    t = _mean_force(
+        stroke_study.measure_strokes(
+            ["curly"], brush_lengths=[0.33, 0.67, 1.0], seeds=[0], progress=False, physics="v4"
+        )
+        + stroke_study.measure_strokes(
+            ["wavy", "loose_curl"], brush_lengths=[1.0], seeds=[0], progress=False, physics="v4"
+        )
+    )
+    assert t[("curly", 0.33)] < t[("curly", 0.67)] < t[("curly", 1.0)]
+    assert t[("wavy", 1.0)] < t[("loose_curl", 1.0)] < t[("curly", 1.0)]
