@@ -74,6 +74,8 @@ def test_wig_lists_mix_names_and_sets() -> None:
         ({"root_run": -0.1}, "root_run"),
         ({"root_run": 1.5}, "root_run"),
         ({"root_run": float("nan")}, "root_run"),
+        ({"root_run_min": -0.01}, "root_run_min"),
+        ({"root_run_min": 0.5, "length": 0.2}, "root_run_min"),
     ],
 )
 def test_bad_config_names_field(changes: dict, field: str) -> None:
@@ -228,6 +230,17 @@ def test_root_run_spreads_the_pairs_helix_phases() -> None:
     assert np.ptp(phases(spread, 0.03)) > 0.6 * np.pi
     assert spread.max_cross_link < 0.4
     np.testing.assert_allclose(np.abs(spread.pair_link), np.abs(plain.pair_link), rtol=0.05)
+    # root_run_min: every group straight at least that far, the spread on top
+    based = base.replace(root_run=0.5, root_run_min=0.012)
+    assert [based.root_run_length(g) for g in range(base.n_groups)] == pytest.approx(
+        [0.012 + r for r in runs]
+    )
+    based_layout = hair.wig_layout(based)
+    for members in based_layout.groups:
+        for s in members:
+            top = based_layout.curves[s]
+            top = top[-top[:, 2] <= 0.012]
+            np.testing.assert_allclose(top[:, :2] - top[0, :2], 0.0, atol=1e-12)
 
 
 @pytest.mark.parametrize("name", ["wavy", "curly", "coily"])

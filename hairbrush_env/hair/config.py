@@ -178,6 +178,8 @@ class WigConfig:
         ``scripts/probe_insertion.py``, ``docs/detangling.md``, *Where the comb goes in*). ``0.5`` spreads the pairs'
         phases over half a turn, every phase a pair can take (its two strands are half a turn apart). A group's
         helix is shorter by its run, so its link is lower by up to ``root_run`` turns.
+    root_run_min : float
+        Straight run [m] every curled group has below its roots before the spread of :attr:`root_run` (default 0).
     self_collision : bool
         Contacts between non-adjacent segments of the same strand (:attr:`hairbrush_env.rods.RodSpec.selfcollide`).
         Off by default: then a strand's own segments can pass through each other, and brushing makes them (curly,
@@ -215,6 +217,7 @@ class WigConfig:
     mass_scale: float = MASS_SCALE
     self_collision: bool = False
     root_run: float = 0.0
+    root_run_min: float = 0.0
 
     def __post_init__(self) -> None:
         _require(
@@ -302,6 +305,12 @@ class WigConfig:
             self.root_run,
         )
         _require(
+            _finite(self.root_run_min) and 0.0 <= self.root_run_min < self.length,
+            "root_run_min",
+            "must be in [0, length) m",
+            self.root_run_min,
+        )
+        _require(
             self.rod_kind in rods.ROD_KINDS, "rod_kind", f"must be one of {rods.ROD_KINDS}", self.rod_kind
         )
         _require(
@@ -361,9 +370,9 @@ class WigConfig:
 
     def root_run_length(self, group: int) -> float:
         """Length [m] for which ``group`` hangs straight below its roots before it curls (:attr:`root_run`)."""
-        if self.curliness <= 0 or self.root_run == 0.0:
+        if self.curliness <= 0 or (self.root_run == 0.0 and self.root_run_min == 0.0):
             return 0.0
-        return self.root_run * self.pitch * ((group * _GOLDEN) % 1.0)
+        return self.root_run_min + self.root_run * self.pitch * ((group * _GOLDEN) % 1.0)
 
     @property
     def hanging_length(self) -> float:
@@ -402,7 +411,7 @@ class WigConfig:
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 
-_LATE_FIELDS = ("quadratic_damping", "drag_density", "root_run")
+_LATE_FIELDS = ("quadratic_damping", "drag_density", "root_run", "root_run_min")
 _GOLDEN = 0.5 * (1.0 + math.sqrt(5.0))
 
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
