@@ -86,6 +86,23 @@ def test_speed_changes_max_force_little(tmp_path) -> None:
         assert abs(slow - fast) <= max(1.0, 0.25 * 0.5 * (slow + fast)), (wig, slow, fast)
 
 
+def _fig_3_7_grid(physics: str) -> dict[tuple[str, float], float]:
+    """Mean max force per (preset, b_l) over seeds 0–2 at b_l 0.33, 0.67, 1 under ``physics`` (Fig. 3.7's grid)."""
+    from hairbrush_env.executor import ExecutorConfig
+    from hairbrush_env.hair import PRESETS
+
+    return _mean_force(
+        stroke_study.measure_strokes(
+            list(PRESETS),
+            brush_lengths=[0.33, 0.67, 1.0],
+            seeds=[0, 1, 2],
+            executor=ExecutorConfig(workers=2),
+            progress=False,
+            physics=physics,
+        )
+    )
+
+
 def _mean_force(rows: list[dict]) -> dict[tuple[str, float], float]:
     assert not any(r["diverged"] for r in rows)
     return {(e["wig"], e["brush_length"]): e["mean"] for e in stroke_study.summarize(rows)}
@@ -112,20 +129,10 @@ def test_fig_3_7_under_v1() -> None:
     --brush-lengths 0.33,0.67,1 --seeds 3``): the force grows with b_l on every curled preset (Fig. 3.6(ii)), and at
     b_l = 1 with curliness, straight staying well below F_T and the curliest full stroke above it (measured 0.02 <
     4.82 < 5.30 < 9.40 < 10.92 < 11.29 N)."""
-    from hairbrush_env.executor import ExecutorConfig
     from hairbrush_env.hair import PRESETS
     from hairbrush_env.scene import PAIN_THRESHOLD
 
-    t = _mean_force(
-        stroke_study.measure_strokes(
-            list(PRESETS),
-            brush_lengths=[0.33, 0.67, 1.0],
-            seeds=[0, 1, 2],
-            executor=ExecutorConfig(workers=2),
-            progress=False,
-            physics="v1",
-        )
-    )
+    t = _fig_3_7_grid("v1")
     for name in list(PRESETS)[1:]:
         assert t[(name, 0.33)] < t[(name, 0.67)] < t[(name, 1.0)], name
     full = np.array([t[(name, 1.0)] for name in PRESETS])
@@ -153,19 +160,7 @@ def test_fig_3_6_ii_under_v3_reduced() -> None:
 
 @pytest.fixture(scope="module")
 def fig_3_7_v3() -> dict[tuple[str, float], float]:
-    from hairbrush_env.executor import ExecutorConfig
-    from hairbrush_env.hair import PRESETS
-
-    return _mean_force(
-        stroke_study.measure_strokes(
-            list(PRESETS),
-            brush_lengths=[0.33, 0.67, 1.0],
-            seeds=[0, 1, 2],
-            executor=ExecutorConfig(workers=2),
-            progress=False,
-            physics="v3",
-        )
-    )
+    return _fig_3_7_grid("v3")
 
 
 @pytest.mark.slow
