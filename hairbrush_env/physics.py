@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v4`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v5`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -28,6 +28,10 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   (``root_run = 0.5``). Under v3 all pairs curl from their roots in one phase, so a comb put in at some start heights
   meets every pair head on and parts none (curly, seed 0: 0 of 12 at b_l 0.7 and 0.9, 12 of 12 at 0.725 and 0.95);
   under v4 it parts 9–11 of 12 at every start height tried (docs/detangling.md, *Where the comb goes in*).
+- ``v5``: v4 with every curled pair hanging straight for 12 mm below its roots before v4's spread of runs
+  (``root_run_min = 0.012``). Under v4 the curl of some pairs starts at the roots, above the tines of a full stroke
+  (8 mm below the roots), and the link held there is never combed; coily's tines meet those pairs' coils head on at
+  the insertion. With the straight 12 mm no link lies above the tines (docs/detangling.md, *HairBrush-v5*).
 """
 
 from __future__ import annotations
@@ -91,6 +95,7 @@ _V2_WIG_FIELDS: Mapping[str, Any] = {
 
 _V3_WIG_FIELDS: Mapping[str, Any] = {**_V2_WIG_FIELDS, "n_triples": 0}
 _V4_WIG_FIELDS: Mapping[str, Any] = {**_V3_WIG_FIELDS, "root_run": 0.5}
+_V5_WIG_FIELDS: Mapping[str, Any] = {**_V4_WIG_FIELDS, "root_run_min": 0.012}
 
 PHYSICS: Mapping[str, PhysicsVersion] = {
     "v0": PhysicsVersion("v0", summary="rigid comb, hair-hair friction 0.3"),
@@ -117,6 +122,12 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         brush="wide_soft_comb",
         wig_fields=_V4_WIG_FIELDS,
         summary="v3 with each pair curling from a different distance below its roots",
+    ),
+    "v5": PhysicsVersion(
+        "v5",
+        brush="wide_soft_comb",
+        wig_fields=_V5_WIG_FIELDS,
+        summary="v4 with every pair hanging straight for 12 mm below its roots",
     ),
 }
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from hairbrush_env.brush import get_brush
-from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS, V3_PHYSICS, V4_PHYSICS
+from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS, V3_PHYSICS, V4_PHYSICS, V5_PHYSICS
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
 
@@ -19,7 +19,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -78,6 +78,21 @@ def test_v4_is_v3_with_pairs_curling_from_different_depths() -> None:
     assert dict(v4.wig_fields) == {**v3.wig_fields, "root_run": 0.5}
     assert ENV_IDS["HairBrush-v4"][2] == ENV_IDS["HairBrushContinuous-v4"][2] == V4_PHYSICS == v4.env_kwargs()
     assert all(_pairs_parted_by_a_tine("v4", "curly"))  # the roots stay across the tines
+
+
+def test_v5_is_v4_with_a_straight_run_below_every_root() -> None:
+    v4, v5 = get_physics("v4"), get_physics("v5")
+    assert v5.brush == v4.brush
+    assert dict(v5.wig_fields) == {**v4.wig_fields, "root_run_min": 0.012}
+    assert ENV_IDS["HairBrush-v5"][2] == ENV_IDS["HairBrushContinuous-v5"][2] == V5_PHYSICS == v5.env_kwargs()
+    for name in ("curly", "coily"):
+        wig = v5.wig(name)
+        runs = [wig.root_run_length(g) for g in range(wig.n_groups)]
+        # every pair hangs straight for 12 mm at least, and the runs still spread over v4's half pitch
+        assert min(runs) >= 0.012 and max(runs) - min(runs) > 0.4 * wig.pitch * 0.5, (name, runs)
+        # a full stroke's tines go in 8 mm below the roots: above them every pair hangs straight, so holds no link
+        assert min(runs) > get_physics("v5").scene_config(name).scalp_clearance + 0.003, name
+    assert all(_pairs_parted_by_a_tine("v5", "curly"))  # the roots stay across the tines
 
 
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:

@@ -7,6 +7,7 @@
 - ``HairBrush-v2``, ``HairBrushContinuous-v2`` — the same envs with the v2 physics (:data:`V2_PHYSICS`).
 - ``HairBrush-v3``, ``HairBrushContinuous-v3`` — the same envs with the v3 physics (:data:`V3_PHYSICS`).
 - ``HairBrush-v4``, ``HairBrushContinuous-v4`` — the same envs with the v4 physics (:data:`V4_PHYSICS`).
+- ``HairBrush-v5``, ``HairBrushContinuous-v5`` — the same envs with the v5 physics (:data:`V5_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -25,6 +26,7 @@ __all__ = [
     "V2_PHYSICS",
     "V3_PHYSICS",
     "V4_PHYSICS",
+    "V5_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -45,6 +47,9 @@ V3_PHYSICS: dict = PHYSICS["v3"].env_kwargs()
 #: What v4 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v4"]`` (v3 with each pair curling from a
 #: different distance below its roots, ``WigConfig.root_run``).
 V4_PHYSICS: dict = PHYSICS["v4"].env_kwargs()
+#: What v5 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v5"]`` (v4 with every pair hanging straight
+#: for 12 mm below its roots, ``WigConfig.root_run_min``).
+V5_PHYSICS: dict = PHYSICS["v5"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -74,6 +79,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V4_PHYSICS,
+    ),
+    "HairBrush-v5": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V5_PHYSICS),
+    "HairBrushContinuous-v5": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V5_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

@@ -141,6 +141,9 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       before it curls (`WigConfig.root_run`), so that the pairs' helix phases differ and the comb parts most pairs
       at any start height; under v3 it parted all or none (`hairbrush_env.envs.V4_PHYSICS`). Same spaces, rewards
       and episode rules.
+    - v5 (issue #11): v4 with every pair hanging straight for 12 mm below its roots before it curls
+      (`WigConfig.root_run_min`), so that no link lies above a full stroke's tines
+      (`hairbrush_env.envs.V5_PHYSICS`). Same spaces, rewards and episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
