@@ -296,13 +296,25 @@ def six_strokes_v5() -> dict[tuple[str, int], list[dict]]:
 
 @pytest.mark.slow
 def test_fig_3_6_under_v5_physics(six_strokes_v5):
-    """Fig. 3.6(i) under v5 (``hairbrush repeat --physics v5 --wigs curly,coily --seeds 3``), on every series: six
-    full strokes leave ≤ 30 % of the entanglement (measured curly 0.08 / 0.09 / 0.07, coily COILY_LEFT; v4's coily
-    0.40–0.44), eq. 3.4 is met within the six strokes, and no strand crosses another or comes closer than half its
-    diameter to itself. On curly every later stroke reads less than the first (first 8.8–10.5 N)."""
+    """Fig. 3.6(i) under v5 (``hairbrush repeat --physics v5 --wigs curly,coily --seeds 3``): on every series six full
+    strokes leave ≤ 30 % of the entanglement (measured curly 0.08 / 0.09 / 0.07, coily 0.09 / 0.08 / 0.07; v4's
+    coily 0.40–0.44) and no strand crosses another or comes closer than half its diameter to itself. On curly every
+    later stroke reads less than the first (first 8.8–10.5 N) and eq. 3.4 is met within the six strokes."""
     for (wig, _), rows in six_strokes_v5.items():
         forces = [r["max_force"] for r in rows[1:]]
         assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"], (wig, forces)
-        assert plateau_stroke(forces) is not None, (wig, forces)
         assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
     _assert_falls_from_the_first_and_plateaus({k: v for k, v in six_strokes_v5.items() if k[0] == "curly"})
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="coily's second full stroke reads more than its first on seeds 0 and 2 (11.1 and 11.0 N after 9.4 and "
+    "9.2): the first stroke unwinds every pair and the second winds 3–4 again; seed 1 meets no plateau within six "
+    "(docs/detangling.md, *HairBrush-v5*)",
+)
+def test_fig_3_6_coily_force_falls_under_v5(six_strokes_v5):
+    """Fig. 3.6(i)'s shape on coily under v5: every later stroke reads less than the first, and eq. 3.4 is met."""
+    _assert_falls_from_the_first_and_plateaus({k: v for k, v in six_strokes_v5.items() if k[0] == "coily"})
