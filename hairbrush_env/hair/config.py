@@ -180,6 +180,9 @@ class WigConfig:
         helix is shorter by its run, so its link is lower by up to ``root_run`` turns.
     root_run_min : float
         Straight run [m] every curled group has below its roots before the spread of :attr:`root_run` (default 0).
+        A full stroke's tines go in some 8 mm below the roots; a group that curls above them holds link no stroke
+        combs, and its top coils meet the tines head on as they go in (coily under ``HairBrush-v4``: 7 of 12 pairs
+        parted at the insertion; with 12 mm here, 12 of 12: ``docs/detangling.md``, *HairBrush-v5*).
     self_collision : bool
         Contacts between non-adjacent segments of the same strand (:attr:`hairbrush_env.rods.RodSpec.selfcollide`).
         Off by default: then a strand's own segments can pass through each other, and brushing makes them (curly,
