@@ -194,13 +194,13 @@ def test_speed_limited_step_splits_contact_steps(sim: scene.BrushingSim) -> None
     stroke takes more, shorter physics steps over the same simulated time, and the step is restored after."""
     sim.reset(0)
     n0 = sim.n_steps
-    plain = sim.stroke(0.2, rng=np.random.default_rng(1))
+    plain = sim.stroke(0.1, rng=np.random.default_rng(1))
     plain_steps = sim.n_steps - n0
     # 0.05 mm per 1 ms step is 5 cm/s: below the pull's 0.1 m/s, so the strands the comb drags force splits.
     with scene.BrushingSim(sim.replace_config(max_step_travel=5e-5)) as fine:
         fine.reset(0)
         n0 = fine.n_steps
-        res = fine.stroke(0.2, rng=np.random.default_rng(1))
+        res = fine.stroke(0.1, rng=np.random.default_rng(1))
         split_steps = fine.n_steps - n0
         assert fine.model.opt.timestep in (fine.config.timestep, fine.config.contact_timestep)
     assert not res.diverged
