@@ -1,7 +1,9 @@
 """Exploration probe: max force of one stroke at several pull speeds, for a given strand mass scale (Fig. 3.8).
 
-    python scripts/probe_speed.py WIG MASS_SCALE B_L SPEED[,SPEED...] [SEEDS] [WIG_FIELDS_JSON] [SCENE_FIELDS_JSON]
+    python scripts/probe_speed.py WIG MASS_SCALE B_L SPEED[,SPEED...] [SEEDS] [WIG_FIELDS_JSON] [SCENE_FIELDS_JSON] \
+        [--physics vN]
     # e.g. curly 1 0.67 0.05,0.2 3 '{"damping": 0.0632}' '{"max_step_travel": 0.0008}'
+    # or   curly 3 1 0.05,0.2 3 '{}' '{}' --physics v5      (HairBrush-v5's wig and brush, a third of the mass scale)
 
 One stroke per (seed, speed) from the pre-brushed wig, no abort; prints the max force per seed and the mean per speed
 (docs/detangling.md, *Correction*: is the mass-scaled stroke still quasi-static?).
@@ -15,19 +17,32 @@ os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import numpy as np
 
 from hairbrush_env import hair
+from hairbrush_env.physics import get_physics
 from hairbrush_env.scene import BrushingSim, SceneConfig
 
+physics = None
+if "--physics" in sys.argv:
+    i = sys.argv.index("--physics")
+    physics = get_physics(sys.argv[i + 1])
+    del sys.argv[i : i + 2]
 wig, scale, b_l = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
 speeds = [float(v) for v in sys.argv[4].split(",")]
 n_seeds = int(sys.argv[5]) if len(sys.argv) > 5 else 3
 extra = json.loads(sys.argv[6]) if len(sys.argv) > 6 else {}
 scene_fields = json.loads(sys.argv[7]) if len(sys.argv) > 7 else {}
-sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig].replace(mass_scale=scale, **extra), **scene_fields))
+if physics is None:
+    sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig].replace(mass_scale=scale, **extra), **scene_fields))
+else:
+    w = physics.wig(wig).replace(mass_scale=scale, **extra)  # the extra fields win over the version's
+    sim = BrushingSim(SceneConfig(wig=w, brush=physics.brush, **scene_fields))
 for speed in speeds:
     forces = []
     for seed in range(n_seeds):
         sim.reset(seed)
-        forces.append(sim.stroke(b_l, speed=speed, abort_force=None).max_force)
+        res = sim.stroke(b_l, speed=speed, abort_force=None)
+        forces.append(res.max_force)
+        if res.diverged:
+            print(f"seed {seed} at {speed:g} m/s diverged: its force is cut short", flush=True)
     print(
         f"{wig} mass_scale {scale:g} b_l {b_l:g} speed {speed:g} m/s: max force",
         " ".join(f"{f:.2f}" for f in forces),
