@@ -16,11 +16,10 @@ import sys
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import numpy as np
 
-from hairbrush_env import hair
 from hairbrush_env.physics import get_physics
 from hairbrush_env.scene import BrushingSim, SceneConfig
 
-physics = None
+physics = get_physics("v0")  # the defaults: no wig fields, the rigid comb
 if "--physics" in sys.argv:
     i = sys.argv.index("--physics")
     physics = get_physics(sys.argv[i + 1])
@@ -30,11 +29,9 @@ speeds = [float(v) for v in sys.argv[4].split(",")]
 n_seeds = int(sys.argv[5]) if len(sys.argv) > 5 else 3
 extra = json.loads(sys.argv[6]) if len(sys.argv) > 6 else {}
 scene_fields = json.loads(sys.argv[7]) if len(sys.argv) > 7 else {}
-if physics is None:
-    sim = BrushingSim(SceneConfig(wig=hair.PRESETS[wig].replace(mass_scale=scale, **extra), **scene_fields))
-else:
-    w = physics.wig(wig).replace(mass_scale=scale, **extra)  # the extra fields win over the version's
-    sim = BrushingSim(SceneConfig(wig=w, brush=physics.brush, **scene_fields))
+w = physics.wig(wig).replace(mass_scale=scale, **extra)  # the extra fields win over the version's
+scene_fields.setdefault("brush", physics.brush)
+sim = BrushingSim(SceneConfig(wig=w, **scene_fields))
 for speed in speeds:
     forces = []
     for seed in range(n_seeds):

@@ -97,6 +97,12 @@ def test_fig_3_6_coily_force_falls_from_the_first_stroke(coily_six_strokes):
         assert max(forces[1:]) < forces[0], forces
 
 
+def _assert_no_pass_through(rows: list[dict]) -> None:
+    """Every stroke of a series: no strand crossed another, none diverged, no strand came closer than half its
+    diameter to itself (rows[0] is the untouched wig)."""
+    assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+
+
 def _assert_falls_from_the_first_and_plateaus(series: dict[int, list[dict]]) -> None:
     """Fig. 3.6(i)'s shape on every series: every later stroke reads less than the first, and eq. 3.4
     (|Δf_max| < 0.4 N) is met within the series."""
@@ -175,7 +181,7 @@ def test_fig_3_6_coily_under_v1_physics(coily_six_strokes_v1):
         forces = [r["max_force"] for r in rows[1:]]
         assert forces[0] >= PAIN_THRESHOLD and forces[1] < forces[0], forces
         assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-        assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+        _assert_no_pass_through(rows)
 
 
 @pytest.mark.slow
@@ -213,7 +219,7 @@ def test_fig_3_6_curly_under_v2_reduced():
     first, second = rows[1]["max_force"], rows[2]["max_force"]
     assert first >= 0.8 * PAIN_THRESHOLD and second < 0.5 * first, (first, second)
     assert rows[-1]["entanglement"] <= 0.4 * rows[0]["entanglement"]
-    assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+    _assert_no_pass_through(rows)
 
 
 @pytest.mark.slow
@@ -227,7 +233,7 @@ def test_fig_3_6_under_v2_physics(six_strokes_v2):
         forces = [r["max_force"] for r in rows[1:]]
         assert forces[0] >= 0.8 * PAIN_THRESHOLD and max(forces[4:]) < 0.5 * forces[0], forces
         assert rows[-1]["entanglement"] <= 0.35 * rows[0]["entanglement"]
-        assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+        _assert_no_pass_through(rows)
 
 
 @pytest.mark.slow
@@ -255,7 +261,7 @@ def test_fig_3_6_curly_under_v3_reduced():
     first, second = rows[1]["max_force"], rows[2]["max_force"]
     assert first >= PAIN_THRESHOLD and second < 0.6 * first, (first, second)
     assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-    assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+    _assert_no_pass_through(rows)
 
 
 @pytest.fixture(scope="module")
@@ -272,7 +278,7 @@ def test_fig_3_6_under_v3_physics(six_strokes_v3):
     _assert_falls_from_the_first_and_plateaus(dict(enumerate(six_strokes_v3.values())))
     for rows in six_strokes_v3.values():
         assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-        assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+        _assert_no_pass_through(rows)
 
 
 def test_fig_3_6_curly_under_v5_reduced():
@@ -286,7 +292,7 @@ def test_fig_3_6_curly_under_v5_reduced():
     first, second = rows[1]["max_force"], rows[2]["max_force"]
     assert first >= 0.9 * PAIN_THRESHOLD and second < 0.6 * first, (first, second)
     assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-    assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+    _assert_no_pass_through(rows)
 
 
 @pytest.fixture(scope="module")
@@ -303,7 +309,7 @@ def test_fig_3_6_under_v5_physics(six_strokes_v5):
     for (wig, _), rows in six_strokes_v5.items():
         forces = [r["max_force"] for r in rows[1:]]
         assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"], (wig, forces)
-        assert all(r["crossings"] == 0 and not r["diverged"] and r["min_self"] >= 0.5 for r in rows[1:])
+        _assert_no_pass_through(rows)
     _assert_falls_from_the_first_and_plateaus({k: v for k, v in six_strokes_v5.items() if k[0] == "curly"})
 
 
