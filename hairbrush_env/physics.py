@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v5`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v6`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -32,11 +32,19 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   (``root_run_min = 0.012``). Under v4 the curl of some pairs starts at the roots, above the tines of a full stroke
   (8 mm below the roots), and the link held there is never combed; coily's tines meet those pairs' coils head on at
   the insertion. With the straight 12 mm no link lies above the tines (docs/detangling.md, *HairBrush-v5*).
+- ``v6``: v5 with every strand's stress-free shape turned by π/2 about its root instead of π/3 (``rest_splay``), the
+  root's twist hinge first (``root_twist_first``). The two strands of a pair rest 2R apart across the tines
+  (v5: R), so the tine through the group axis lies between their rest coils instead of inside both. Under v5 a full
+  stroke through coily gathers both strands of every pair onto that tine and leaves them hanging on one axis, their
+  turns interleaved, and the second stroke winds pairs up again. A strand hanging straight below its root is turned
+  purely in twist, which at π/2 would rest the default hinge order on its gimbal lock, hence the twist first
+  (docs/detangling.md, *HairBrush-v6*).
 """
 
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -96,6 +104,7 @@ _V2_WIG_FIELDS: Mapping[str, Any] = {
 _V3_WIG_FIELDS: Mapping[str, Any] = {**_V2_WIG_FIELDS, "n_triples": 0}
 _V4_WIG_FIELDS: Mapping[str, Any] = {**_V3_WIG_FIELDS, "root_run": 0.5}
 _V5_WIG_FIELDS: Mapping[str, Any] = {**_V4_WIG_FIELDS, "root_run_min": 0.012}
+_V6_WIG_FIELDS: Mapping[str, Any] = {**_V5_WIG_FIELDS, "rest_splay": math.pi / 2, "root_twist_first": True}
 
 PHYSICS: Mapping[str, PhysicsVersion] = {
     "v0": PhysicsVersion("v0", summary="rigid comb, hair-hair friction 0.3"),
@@ -128,6 +137,13 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         brush="wide_soft_comb",
         wig_fields=_V5_WIG_FIELDS,
         summary="v4 with every pair hanging straight for 12 mm below its roots",
+    ),
+    "v6": PhysicsVersion(
+        "v6",
+        brush="wide_soft_comb",
+        wig_fields=_V6_WIG_FIELDS,
+        summary="v5 with each strand's rest shape turned by pi/2 about its root (twist hinge first), so a pair's "
+        "strands rest apart across the tines",
     ),
 }
 

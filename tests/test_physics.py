@@ -5,7 +5,15 @@ from __future__ import annotations
 import pytest
 
 from hairbrush_env.brush import get_brush
-from hairbrush_env.envs import ENV_IDS, V1_PHYSICS, V2_PHYSICS, V3_PHYSICS, V4_PHYSICS, V5_PHYSICS
+from hairbrush_env.envs import (
+    ENV_IDS,
+    V1_PHYSICS,
+    V2_PHYSICS,
+    V3_PHYSICS,
+    V4_PHYSICS,
+    V5_PHYSICS,
+    V6_PHYSICS,
+)
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
 
@@ -19,7 +27,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -93,6 +101,55 @@ def test_v5_is_v4_with_a_straight_run_below_every_root() -> None:
         # a full stroke's tines go in 8 mm below the roots: above them every pair hangs straight, so holds no link
         assert min(runs) > get_physics("v5").scene_config(name).scalp_clearance + 0.003, name
     assert all(_pairs_parted_by_a_tine("v5", "curly"))  # the roots stay across the tines
+
+
+def _root_middle_rest_deg(version: str, wig: str) -> float:
+    """Largest rest angle of the middle root hinge (the one whose ±90° is the gimbal lock) over ``wig``'s strands."""
+    import math
+
+    import mujoco
+
+    from hairbrush_env import rods
+    from hairbrush_env.hair import add_wig
+
+    cfg = get_physics(version).wig(wig)
+    spec = mujoco.MjSpec()
+    rods.configure_rod_options(spec, timestep=1e-3, kind="chain")
+    add_wig(spec, cfg, parent_body=spec.worldbody)
+    model = spec.compile()
+    worst = 0.0
+    for j in range(model.njnt):
+        name = model.joint(j).name
+        if name.endswith("_0_bend1") or name.endswith("_0_twist"):
+            body_joints = [
+                model.joint(k).name for k in range(model.njnt) if model.jnt_bodyid[k] == model.jnt_bodyid[j]
+            ]
+            if body_joints.index(name) == 1:
+                worst = max(worst, abs(math.degrees(float(model.qpos_spring[model.jnt_qposadr[j]]))))
+    return worst
+
+
+def test_v6_is_v5_with_the_strands_of_a_pair_resting_apart_across_the_tines() -> None:
+    """v6 turns each strand's stress-free shape by π/2 about its root (v5: π/3). A strand's own helix axis then sits
+    2R (1 − cos ψ) across the tines from its partner's: 2R under v6, so the tine through the group axis lies between
+    the two rest coils, not inside both (v5: R, the coils overlap by R across the tines and a full stroke gathers
+    both onto that tine; docs/detangling.md, *HairBrush-v6*). Its roots hang straight, so the turn is a pure twist:
+    v6 puts the twist hinge first, and no root rests near the hinges' lock (v5's middle hinge rests at 60°)."""
+    import math
+
+    v5, v6 = get_physics("v5"), get_physics("v6")
+    assert v6.brush == v5.brush
+    assert dict(v6.wig_fields) == {**v5.wig_fields, "rest_splay": math.pi / 2, "root_twist_first": True}
+    assert ENV_IDS["HairBrush-v6"][2] == ENV_IDS["HairBrushContinuous-v6"][2] == V6_PHYSICS == v6.env_kwargs()
+    for name in ("curly", "coily"):
+        across = {
+            v.name: 2 * v.wig(name).curl_radius * (1 - math.cos(v.wig(name).rest_splay)) for v in (v5, v6)
+        }
+        assert across["v5"] < 2 * v5.wig(name).curl_radius <= across["v6"] + 1e-12, name
+    assert _root_middle_rest_deg("v5", "coily") == pytest.approx(60.0, abs=0.1)
+    for name in ("wavy", "curly", "coily", "held_out_curly"):
+        assert _root_middle_rest_deg("v6", name) < 25.0, name
+    assert all(_pairs_parted_by_a_tine("v6", "curly"))  # the roots stay across the tines
 
 
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:

@@ -470,6 +470,55 @@ def test_turned_root_rests_far_from_gimbal_lock(tilt_deg):
         assert twist <= (31.0 if tilt_deg < 50 else 16.0), (twist, unrolled)
 
 
+def _straight_then_curled(n: int = 25) -> np.ndarray:
+    """12 mm straight down from the root, then two curl turns (a v5/v6 wig strand's top)."""
+    t = np.linspace(0.0, 1.0, n)
+    curl = np.column_stack(
+        [0.012 * (np.cos(4 * np.pi * t) - 1), 0.012 * np.sin(4 * np.pi * t), -0.012 - 0.048 * t]
+    )
+    return np.vstack([[0.0, 0.0, 0.0], [0.0, 0.0, -0.006], curl])
+
+
+def test_a_root_hanging_straight_is_turned_purely_in_twist_and_twist_first_keeps_it_off_the_lock():
+    """A first edge along the vertical is turned about its own tangent, so the rest twist equals the turn and no roll
+    helps: π/2 puts the default order's middle hinge (twist) on the gimbal lock (v6's ψ under v5's root). With the
+    twist first the middle hinge (bend1) rests at 0 and the rod still relaxes exactly into the turned shape."""
+    pts = _straight_then_curled()
+    with pytest.warns(UserWarning, match="Gimbal lock"):
+        assert abs(_root_twist_rest_deg(pts, math.pi / 2)) == pytest.approx(90.0, abs=1e-6)
+    turn = math.pi / 2
+    spec = mujoco.MjSpec()
+    rods.configure_rod_options(spec, timestep=1e-3, kind="chain")
+    spec.option.gravity = [0.0, 0.0, 0.0]
+    rods.add_rod(
+        spec,
+        rods.RodSpec(
+            name="r",
+            points=pts,
+            radius=8e-4,
+            young=5e8,
+            damping=0.05,
+            root_rest_turn=turn,
+            root_twist_first=True,
+        ),
+    )
+    model = spec.compile()
+    names = [model.joint(j).name for j in range(model.njnt)][:3]
+    assert names == ["r_0_twist", "r_0_bend1", "r_0_bend2"]
+    rest = [math.degrees(float(model.qpos_spring[model.jnt_qposadr[model.joint(n).id]])) for n in names]
+    assert (
+        abs(rest[0]) == pytest.approx(90.0, abs=1e-6) and abs(rest[1]) < 1e-6
+    )  # the middle hinge rests at 0
+    data = mujoco.MjData(model)
+    for _ in range(6000):
+        mujoco.mj_step(model, data)
+    c, s = math.cos(turn), math.sin(turn)
+    want = (pts - pts[0]) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T + pts[0]
+    np.testing.assert_allclose(rods.RodView(model, "r").vertices(data), want, atol=1e-9)
+    with pytest.raises(ValueError, match="root_twist_first"):
+        rods.RodSpec(name="f", points=pts, radius=8e-4, young=5e8, clamp=None, root_twist_first=True)
+
+
 # ------------------------------------------------------------------------------------------- mass scaling
 def test_mass_scale_multiplies_inertia_not_weight() -> None:
     pts = _curl(1.0, 8, 0.01, 0.004)

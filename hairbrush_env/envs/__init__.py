@@ -8,6 +8,7 @@
 - ``HairBrush-v3``, ``HairBrushContinuous-v3`` — the same envs with the v3 physics (:data:`V3_PHYSICS`).
 - ``HairBrush-v4``, ``HairBrushContinuous-v4`` — the same envs with the v4 physics (:data:`V4_PHYSICS`).
 - ``HairBrush-v5``, ``HairBrushContinuous-v5`` — the same envs with the v5 physics (:data:`V5_PHYSICS`).
+- ``HairBrush-v6``, ``HairBrushContinuous-v6`` — the same envs with the v6 physics (:data:`V6_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -27,6 +28,7 @@ __all__ = [
     "V3_PHYSICS",
     "V4_PHYSICS",
     "V5_PHYSICS",
+    "V6_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -50,6 +52,9 @@ V4_PHYSICS: dict = PHYSICS["v4"].env_kwargs()
 #: What v5 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v5"]`` (v4 with every pair hanging straight
 #: for 12 mm below its roots, ``WigConfig.root_run_min``).
 V5_PHYSICS: dict = PHYSICS["v5"].env_kwargs()
+#: What v6 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v6"]`` (v5 with each strand's rest shape
+#: turned by π/2 about its root, ``WigConfig.rest_splay``, so a pair's combed-apart strands rest apart).
+V6_PHYSICS: dict = PHYSICS["v6"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -85,6 +90,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V5_PHYSICS,
+    ),
+    "HairBrush-v6": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V6_PHYSICS),
+    "HairBrushContinuous-v6": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V6_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

@@ -159,6 +159,12 @@ class WigConfig:
         curls of the neighbouring groups, and repeated strokes wound the pairs up again (curly, seed 0: 0.25 of
         the link left after one full stroke, 0.56 after six; ``π/3``: 0.31 and 0.27; ``docs/detangling.md``,
         *Root orientation and splay*). Straight wigs ignore it; flex wigs need ``0``.
+    root_twist_first : bool
+        Root hinges in the order twist, bend1, bend2 (:attr:`hairbrush_env.rods.RodSpec.root_twist_first`; default
+        ``False``: bend1, twist, bend2 as at every vertex). A strand that hangs straight below its root
+        (:attr:`root_run_min` > 0) is turned by ``rest_splay`` purely about its own tangent, so its rest twist is
+        ``rest_splay``; the default order puts ``π/2`` on the hinges' gimbal lock (two bending axes aligned, one
+        bending direction lost at the root), the twist-first order at zero middle angle.
     group_rows : int or None
         Rows of groups along the brush's depth axis (x); the columns follow. ``None``: about ``√(n_groups/1.5)``
         (wider than deep). Default 1: a curtain one group deep, in which no tine collects strands of several groups
@@ -216,6 +222,7 @@ class WigConfig:
     rgba: tuple[float, float, float, float] = HAIR_RGBA
     rod_kind: rods.RodKind = "chain"
     rest_splay: float = math.pi / 3
+    root_twist_first: bool = False
     group_rows: int | None = 1
     mass_scale: float = MASS_SCALE
     self_collision: bool = False
@@ -321,6 +328,18 @@ class WigConfig:
             "rest_splay",
             "must be in [-π, π]",
             self.rest_splay,
+        )
+        _require(
+            isinstance(self.root_twist_first, bool),
+            "root_twist_first",
+            "must be a bool",
+            self.root_twist_first,
+        )
+        _require(
+            not self.root_twist_first or self.rod_kind == "chain",
+            "root_twist_first",
+            "needs rod_kind='chain'",
+            self.root_twist_first,
         )
         _require(
             self.rest_splay == 0.0 or self.rod_kind == "chain",

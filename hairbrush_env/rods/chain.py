@@ -57,6 +57,8 @@ _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
 # Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
 # bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
 _JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
+_ROOT_TWIST_FIRST_AXES = (_JOINT_AXES[1], _JOINT_AXES[0], _JOINT_AXES[2])
+"""The root's hinges with the twist first (``RodSpec.root_twist_first``)."""
 _ARMATURE = 0.1
 """Armature of every vertex's three hinges, as a fraction of the segment's moment of inertia about the vertex
 (``m ℓ²/3``). The hinges are an Euler sequence: where a twist reaches ±90° two of their axes align and the joint-space
@@ -101,19 +103,22 @@ def chain_frames(points: np.ndarray, roll: float = 0.0) -> np.ndarray:
     return frames
 
 
-def _root_rest_angles(frame: np.ndarray, turn: float) -> tuple[float, float, float]:
-    """Root hinge angles (bend1 y, twist x, bend2 z, applied in that order in the body frame, as MuJoCo composes a
-    body's hinges) that turn the root frame ``frame`` by ``turn`` about the parent's z axis."""
+def _root_rest_angles(
+    frame: np.ndarray, turn: float, *, twist_first: bool = False
+) -> tuple[float, float, float]:
+    """Root hinge angles, in the root's hinge order (bend1 y, twist x, bend2 z; with ``twist_first`` twist x, bend1
+    y, bend2 z), applied in that order in the body frame as MuJoCo composes a body's hinges, that turn the root frame
+    ``frame`` by ``turn`` about the parent's z axis. The middle angle is the one whose ±90° is the lock."""
     if turn == 0.0:
         return (0.0, 0.0, 0.0)
     c, s = math.cos(turn), math.sin(turn)
     rz = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     local = frame.T @ rz @ frame
-    y, x, z = Rotation.from_matrix(local).as_euler("YXZ")
-    return (float(y), float(x), float(z))
+    a, b, d = Rotation.from_matrix(local).as_euler("XYZ" if twist_first else "YXZ")
+    return (float(a), float(b), float(d))
 
 
-def _root_roll(frame: np.ndarray, turn: float) -> float:
+def _root_roll(frame: np.ndarray, turn: float, *, twist_first: bool = False) -> float:
     """Roll [rad] of the root frame about its tangent that keeps the stress-free root far from gimbal lock.
 
     The root's rest angles are an Euler decomposition of the rest turn; the hinges are singular where the middle
@@ -124,12 +129,12 @@ def _root_roll(frame: np.ndarray, turn: float) -> float:
     root springs use, not the rest shape; their quadratic energy agrees with a rotational spring only near the
     reference, so frames that were far from the lock are left alone.
     """
-    if turn == 0.0 or abs(_root_rest_angles(frame, turn)[1]) <= _MAX_REST_TWIST:
+    if turn == 0.0 or abs(_root_rest_angles(frame, turn, twist_first=twist_first)[1]) <= _MAX_REST_TWIST:
         return 0.0
 
     def badness(roll: float) -> float:
-        y, x, z = _root_rest_angles(frame @ _roll_matrix(roll), turn)
-        return abs(x) + 1e-3 * max(abs(y), abs(z))  # the middle angle first, then the smaller bends
+        a, mid, d = _root_rest_angles(frame @ _roll_matrix(roll), turn, twist_first=twist_first)
+        return abs(mid) + 1e-3 * max(abs(a), abs(d))  # the middle angle first, then the outer ones
 
     rolls = np.linspace(0.0, math.pi, 181)
     return float(rolls[int(np.argmin([badness(r) for r in rolls]))])
@@ -177,7 +182,9 @@ def add_chain_rod(
     lengths = np.linalg.norm(np.diff(pts, axis=0), axis=1)
     frames = chain_frames(pts)
     if clamped := rod.clamp == "start":
-        frames = chain_frames(pts, roll=_root_roll(frames[0], rod.root_rest_turn))
+        frames = chain_frames(
+            pts, roll=_root_roll(frames[0], rod.root_rest_turn, twist_first=rod.root_twist_first)
+        )
     ei, gj = rod.bending_stiffness, rod.twisting_stiffness
     r = rod.radius
     friction = [rod.friction, *FRICTION_TORSION_ROLL]
@@ -205,10 +212,15 @@ def add_chain_rod(
             body.add_freejoint(name=f"{rod.name}_0_free")
         else:
             lbar = 0.5 * float(ell) if k == 0 else 0.5 * float(lengths[k - 1] + ell)
-            rest = _root_rest_angles(frames[0], rod.root_rest_turn) if k == 0 else (0.0, 0.0, 0.0)
+            rest = (
+                _root_rest_angles(frames[0], rod.root_rest_turn, twist_first=rod.root_twist_first)
+                if k == 0
+                else (0.0, 0.0, 0.0)
+            )
             if spec.compiler.degree:  # springref is read in the spec's angle unit
                 rest = tuple(math.degrees(a) for a in rest)
-            for (label, axis), ref in zip(_JOINT_AXES, rest, strict=True):
+            axes = _ROOT_TWIST_FIRST_AXES if k == 0 and rod.root_twist_first else _JOINT_AXES
+            for (label, axis), ref in zip(axes, rest, strict=True):
                 stiffness = (gj if label == "twist" else ei) / lbar
                 body.add_joint(
                     springref=float(ref),

@@ -186,6 +186,12 @@ class RodSpec:
         The rod's stress-free shape is ``points`` turned by this angle [rad] about the parent's z axis through the
         root (chain, clamped rods only): the rod is built in the ``points`` shape, but its root springs pull it
         towards the turned one. Wigs use it so that entwined strands are a prestressed, not a stress-free, state.
+    root_twist_first : bool
+        Order of the clamped root's three hinges (chain rods): ``False`` (default) bend1, twist, bend2, as at every
+        other vertex; ``True`` twist, bend1, bend2. The hinges are an Euler sequence, singular where the middle angle
+        reaches ±90°. A root whose first edge hangs vertically is turned by ``root_rest_turn`` purely about its
+        tangent, i.e. the rest twist equals the turn: 90° puts the default order's rest reference on the lock, and
+        the twist-first order at zero middle angle.
     """
 
     name: str
@@ -211,6 +217,7 @@ class RodSpec:
     edge_solref: tuple[float, float] = EDGE_SOLREF
     kind: RodKind = "chain"
     root_rest_turn: float = 0.0
+    root_twist_first: bool = False
     mass_scale: float = 1.0
 
     def __post_init__(self) -> None:
@@ -235,6 +242,12 @@ class RodSpec:
             raise ValueError(f"RodSpec.kind must be one of {ROD_KINDS}, got {self.kind!r}")
         if self.root_rest_turn != 0.0 and (self.kind != "chain" or self.clamp != "start"):
             raise ValueError("RodSpec.root_rest_turn needs a clamped chain rod (kind='chain', clamp='start')")
+        if not isinstance(self.root_twist_first, bool):
+            raise ValueError(f"RodSpec.root_twist_first must be a bool, got {self.root_twist_first!r}")
+        if self.root_twist_first and (self.kind != "chain" or self.clamp != "start"):
+            raise ValueError(
+                "RodSpec.root_twist_first needs a clamped chain rod (kind='chain', clamp='start')"
+            )
         if self.clamp not in ("start", None):
             raise ValueError(f"RodSpec.clamp must be 'start' or None, got {self.clamp!r}")
         if self.clamp == "start" and pts.shape[0] < 3:
