@@ -19,7 +19,7 @@ Cases: ``chain (default)`` (the default wig and comb), ``flex wave 1`` (the firs
 and ``chain, wave-1 wig`` (the same wig and scene as chains: the like-for-like comparison of strand models);
 ``pull_through`` adds ``chain, v1 physics`` (``HairBrush-v1``'s self-colliding strands, friction 0.15, soft comb) and
 ``chain, v2 physics`` (``HairBrush-v2``'s: v1 with less joint damping, stiffer wisps and drag on the strands) to
-``chain, v5 physics`` (each version's wig fields and brush, ``hairbrush_env.physics``).
+``chain, v6 physics`` (each version's wig fields and brush, ``hairbrush_env.physics``).
 Single-thread physics costs use CPU time (``time.process_time``).
 """
 
@@ -294,12 +294,12 @@ def section_force_table(args: argparse.Namespace) -> None:
 
 
 def section_pull_through(args: argparse.Namespace) -> None:
-    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1–v5 physics against the
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1–v6 physics against the
     wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
     seeds = (7,) if args.quick else (7, 11)
     base = hair.PRESETS[hair.DEFAULT_WIG]
     cases = list(wig_cases(base).items())[::-1]  # flex first: the reference
-    for version in ("v1", "v2", "v3", "v4", "v5"):  # HairBrush-vN's physics, the comb widened like the default's
+    for version in ("v1", "v2", "v3", "v4", "v5", "v6"):  # HairBrush-vN's physics, the comb widened like the default's
         physics = PHYSICS[version]
         soft = dataclasses.replace(
             get_brush(physics.brush), columns=max(get_brush(physics.brush).columns, 2 * base.n_groups + 1)

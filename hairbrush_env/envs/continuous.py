@@ -82,6 +82,8 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     - v2: v0 with the v2 physics of `HairBrush-v2` (v1 with less joint damping, stiffer wisps, drag on the strands).
     - v3: v0 with the v3 physics of `HairBrush-v3` (v2 with every group a pair, the comb two tines wider).
     - v4: v0 with the v4 physics of `HairBrush-v4` (v3 with each pair curling from a different depth below its roots).
+    - v5: v0 with the v5 physics of `HairBrush-v5` (v4 with every pair hanging straight for 12 mm below its roots).
+    - v6: v0 with the v6 physics of `HairBrush-v6` (v5 with a pair's strands resting apart across the tines).
     """
 
     def __init__(

@@ -144,6 +144,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     - v5 (issue #11): v4 with every pair hanging straight for 12 mm below its roots before it curls
       (`WigConfig.root_run_min`), so that no link lies above a full stroke's tines
       (`hairbrush_env.envs.V5_PHYSICS`). Same spaces, rewards and episode rules.
+    - v6 (issue #11): v5 with each strand's stress-free shape turned by π/2 about its root instead of π/3
+      (`WigConfig.rest_splay`, the root's twist hinge first: `WigConfig.root_twist_first`), so that a combed pair's
+      two strands hang apart across the tines instead of on one axis (`hairbrush_env.envs.V6_PHYSICS`). Same
+      spaces, rewards and episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.

@@ -158,7 +158,11 @@ class WigConfig:
         touching. ``ψ = 0`` keeps re-winding; with ``π/2`` each strand rests √2 R off its group axis, among the
         curls of the neighbouring groups, and repeated strokes wound the pairs up again (curly, seed 0: 0.25 of
         the link left after one full stroke, 0.56 after six; ``π/3``: 0.31 and 0.27; ``docs/detangling.md``,
-        *Root orientation and splay*). Straight wigs ignore it; flex wigs need ``0``.
+        *Root orientation and splay*; that was a layout with triples and every pair curling from its roots). Under
+        ``HairBrush-v5``'s layout (pairs only, straight below the roots) ``π/3`` rests a pair's two coils only R apart
+        across the tines, and a full stroke leaves them hanging on one axis, interleaved; ``HairBrush-v6`` sets
+        ``π/2`` (2R across the tines), after which repeated full strokes read less than the first on every series
+        (``docs/detangling.md``, *HairBrush-v6*). Straight wigs ignore it; flex wigs need ``0``.
     root_twist_first : bool
         Root hinges in the order twist, bend1, bend2 (:attr:`hairbrush_env.rods.RodSpec.root_twist_first`; default
         ``False``: bend1, twist, bend2 as at every vertex). A strand that hangs straight below its root
