@@ -63,8 +63,8 @@ def test_bad_density_is_named() -> None:
 
 
 def test_wig_digest_unchanged_by_unset_late_fields() -> None:
-    """Cached pre-brushed states stay valid: ``quadratic_damping``, ``drag_density`` and ``root_run`` count in the
-    digest only when set (the curly preset's digest before they existed: 01ed93b7c0f2bb45)."""
+    """Cached pre-brushed states stay valid: ``quadratic_damping``, ``drag_density``, ``root_run`` and
+    ``root_twist_first`` count in the digest only when set (the curly preset's digest before they existed: 01ed93b7c0f2bb45)."""
     from hairbrush_env import hair
 
     curly = hair.PRESETS["curly"]
@@ -72,3 +72,4 @@ def test_wig_digest_unchanged_by_unset_late_fields() -> None:
     assert curly.replace(drag_density=1000.0).digest() != curly.digest()
     assert curly.replace(quadratic_damping=1e-3).digest() != curly.digest()
     assert curly.replace(root_run=0.5).digest() != curly.digest()
+    assert curly.replace(root_twist_first=True).digest() != curly.digest()

@@ -437,7 +437,7 @@ class WigConfig:
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 
-_LATE_FIELDS = ("quadratic_damping", "drag_density", "root_run", "root_run_min")
+_LATE_FIELDS = ("quadratic_damping", "drag_density", "root_run", "root_run_min", "root_twist_first")
 _GOLDEN = 0.5 * (1.0 + math.sqrt(5.0))
 
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when
