@@ -55,7 +55,9 @@ _MIN_INERTIA = 4.0 * mujoco.mjMINVAL
 # MuJoCo composes a body's hinges in order, each about its axis in the already-rotated frame, so three hinges are an
 # Euler-angle sequence: singular (two axes aligned, the mass matrix loses rank) when the middle angle reaches ±90°.
 # Twist sits in the middle: consecutive segments rarely twist by 90°, while a wisp pressed against the clamp does
-# bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning.
+# bend that far at one vertex — with the twist first, such a bend raised MuJoCo's singular-inertia warning. A root
+# whose rest turn is a pure twist of about 90° (a strand hanging straight below it) may put the twist first instead
+# (RodSpec.root_twist_first): then the rest reference, not a rare bend, decides which angle sits near the lock.
 _JOINT_AXES = (("bend1", (0.0, 1.0, 0.0)), ("twist", (1.0, 0.0, 0.0)), ("bend2", (0.0, 0.0, 1.0)))
 _ROOT_TWIST_FIRST_AXES = (_JOINT_AXES[1], _JOINT_AXES[0], _JOINT_AXES[2])
 """The root's hinges with the twist first (``RodSpec.root_twist_first``)."""
