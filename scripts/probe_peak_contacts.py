@@ -6,28 +6,24 @@ version (docs/detangling.md, *HairBrush-v5*: coily's second stroke).
     # e.g. coily 2 2;  coily 0 2 --y 0.01   (every stroke with the comb moved 10 mm along the curtain)
 """
 
+import argparse
 import os
-import sys
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import mujoco
 import numpy as np
 
-from hairbrush_env.physics import get_physics
+from hairbrush_env.physics import PHYSICS, get_physics
 from hairbrush_env.scene import BrushingSim
 
-physics = get_physics("v5")
-if "--physics" in sys.argv:
-    i = sys.argv.index("--physics")
-    physics = get_physics(sys.argv[i + 1])
-    del sys.argv[i : i + 2]
-y = 0.0
-if "--y" in sys.argv:
-    i = sys.argv.index("--y")
-    y = float(sys.argv[i + 1])
-    del sys.argv[i : i + 2]
-wig, seed = sys.argv[1], int(sys.argv[2])
-n = int(sys.argv[3]) if len(sys.argv) > 3 else 2
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("wig")
+parser.add_argument("seed", type=int)
+parser.add_argument("n_strokes", type=int, nargs="?", default=2)
+parser.add_argument("--physics", choices=list(PHYSICS), default="v5")
+parser.add_argument("--y", type=float, default=0.0, help="comb offset along the curtain [m] for every stroke")
+args = parser.parse_args()
+physics, wig, seed, n, y = get_physics(args.physics), args.wig, args.seed, args.n_strokes, args.y
 sim = BrushingSim(physics.scene_config(wig))
 sim.reset(seed)
 m = sim.model

@@ -422,25 +422,41 @@ def test_flex_state_roundtrip_with_plastic_is_bit_identical() -> None:
     _assert_healthy(model, fresh)
 
 
-@pytest.mark.parametrize("turn", [math.pi / 2, -math.pi / 3])
-def test_root_rest_turn_makes_the_turned_shape_stress_free(turn):
-    """A chain built in one shape with its root springs referenced to the shape turned about the vertical relaxes,
-    without gravity, exactly into the turned shape (wigs' prestressed entwining, WigConfig.rest_splay)."""
-    t = np.linspace(0.0, 1.0, 25)
-    pts = np.column_stack([0.012 * np.cos(4 * np.pi * t), 0.012 * np.sin(4 * np.pi * t), -0.048 * t])
+def _turned_rod_model(pts: np.ndarray, turn: float, **fields) -> mujoco.MjModel:
+    """A clamped chain ``r`` built in ``pts``, its root springs referenced to ``pts`` turned by ``turn``; no gravity."""
     spec = mujoco.MjSpec()
     rods.configure_rod_options(spec, timestep=1e-3, kind="chain")
     spec.option.gravity = [0.0, 0.0, 0.0]
     rods.add_rod(
-        spec, rods.RodSpec(name="r", points=pts, radius=8e-4, young=5e8, damping=0.05, root_rest_turn=turn)
+        spec,
+        rods.RodSpec(
+            name="r", points=pts, radius=8e-4, young=5e8, damping=0.05, root_rest_turn=turn, **fields
+        ),
     )
-    model = spec.compile()
+    return spec.compile()
+
+
+def _assert_relaxes_into_the_turned_shape(
+    pts: np.ndarray, turn: float, model: mujoco.MjModel | None = None
+) -> None:
+    """Released from its built shape, the rod settles exactly into ``pts`` turned by ``turn`` about the vertical
+    through its root."""
+    model = model if model is not None else _turned_rod_model(pts, turn)
     data = mujoco.MjData(model)
     for _ in range(6000):
         mujoco.mj_step(model, data)
     c, s = math.cos(turn), math.sin(turn)
     want = (pts - pts[0]) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T + pts[0]
     np.testing.assert_allclose(rods.RodView(model, "r").vertices(data), want, atol=1e-9)
+
+
+@pytest.mark.parametrize("turn", [math.pi / 2, -math.pi / 3])
+def test_root_rest_turn_makes_the_turned_shape_stress_free(turn):
+    """A chain built in one shape with its root springs referenced to the shape turned about the vertical relaxes,
+    without gravity, exactly into the turned shape (wigs' prestressed entwining, WigConfig.rest_splay)."""
+    t = np.linspace(0.0, 1.0, 25)
+    pts = np.column_stack([0.012 * np.cos(4 * np.pi * t), 0.012 * np.sin(4 * np.pi * t), -0.048 * t])
+    _assert_relaxes_into_the_turned_shape(pts, turn)
     with pytest.raises(ValueError, match="root_rest_turn"):
         rods.RodSpec(name="f", points=pts, radius=8e-4, young=5e8, kind="flex", root_rest_turn=0.1)
 
@@ -487,34 +503,14 @@ def test_a_root_hanging_straight_is_turned_purely_in_twist_and_twist_first_keeps
     with pytest.warns(UserWarning, match="Gimbal lock"):
         assert abs(_root_twist_rest_deg(pts, math.pi / 2)) == pytest.approx(90.0, abs=1e-6)
     turn = math.pi / 2
-    spec = mujoco.MjSpec()
-    rods.configure_rod_options(spec, timestep=1e-3, kind="chain")
-    spec.option.gravity = [0.0, 0.0, 0.0]
-    rods.add_rod(
-        spec,
-        rods.RodSpec(
-            name="r",
-            points=pts,
-            radius=8e-4,
-            young=5e8,
-            damping=0.05,
-            root_rest_turn=turn,
-            root_twist_first=True,
-        ),
-    )
-    model = spec.compile()
+    model = _turned_rod_model(pts, turn, root_twist_first=True)
     names = [model.joint(j).name for j in range(model.njnt)][:3]
     assert names == ["r_0_twist", "r_0_bend1", "r_0_bend2"]
     rest = [math.degrees(float(model.qpos_spring[model.jnt_qposadr[model.joint(n).id]])) for n in names]
     assert (
         abs(rest[0]) == pytest.approx(90.0, abs=1e-6) and abs(rest[1]) < 1e-6
     )  # the middle hinge rests at 0
-    data = mujoco.MjData(model)
-    for _ in range(6000):
-        mujoco.mj_step(model, data)
-    c, s = math.cos(turn), math.sin(turn)
-    want = (pts - pts[0]) @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]).T + pts[0]
-    np.testing.assert_allclose(rods.RodView(model, "r").vertices(data), want, atol=1e-9)
+    _assert_relaxes_into_the_turned_shape(pts, turn, model)
     with pytest.raises(ValueError, match="root_twist_first"):
         rods.RodSpec(name="f", points=pts, radius=8e-4, young=5e8, clamp=None, root_twist_first=True)
 

@@ -91,7 +91,7 @@ def add_wig(
                 selfcollide=cfg.self_collision,
                 # straight strands have no curl whose axis could move: turning them would only twist the root
                 root_rest_turn=float(cfg.rest_splay) if cfg.curliness > 0 else 0.0,
-                root_twist_first=cfg.root_twist_first and cfg.rod_kind == "chain",
+                root_twist_first=cfg.root_twist_first,  # WigConfig allows it on chains only
             ),
             parent=parent_body,
         )
