@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v6`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v7`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -39,6 +39,13 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   turns interleaved, and the second stroke winds pairs up again. A strand hanging straight below its root is turned
   purely in twist, which at π/2 would rest the default hinge order on its gimbal lock, hence the twist first
   (docs/detangling.md, *HairBrush-v6*).
+- ``v7``: v6 with the curls of the curliest presets smaller (``preset_fields``): ``curl_radius`` 10 mm on
+  ``tight_curl``, 9 mm on ``coily``, 11 mm on ``held_out_tight`` (12 mm on all three before), at the same R/P, with
+  ``max_edges`` 48 so they keep 8 edges per turn. Under v6 a full stroke's force is the force that draws curls
+  straight over the tines, which grows with the curls' curvature (≈ 1/R once P ≪ 2πR), not with R/P: curly,
+  tight_curl and coily, all at R = 12 mm, read the same 11.7–12.3 N. Hair types are told apart by curvature (tighter
+  curls are smaller as well as steeper), and with it Fig. 3.7 orders by curliness (docs/detangling.md,
+  *HairBrush-v7*). Custom wigs and the other presets are v6's.
 """
 
 from __future__ import annotations
@@ -58,6 +65,9 @@ class PhysicsVersion:
     name: str
     brush: str = "comb"
     wig_fields: Mapping[str, Any] = field(default_factory=dict)
+    #: WigConfig fields set on the named presets only (before ``wig_fields``): how a version re-sizes a preset's
+    #: curls. A wig given by name, or as a config equal to that preset, gets them; any other config is used as given.
+    preset_fields: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
     #: What the version changes, in a few words (the CLI's help texts).
     summary: str = ""
 
@@ -68,13 +78,13 @@ class PhysicsVersion:
             out["brush"] = self.brush
         if self.wig_fields:
             out["wig_fields"] = dict(self.wig_fields)
+        if self.preset_fields:
+            out["preset_fields"] = {name: dict(f) for name, f in self.preset_fields.items()}
         return out
 
     def wig(self, wig: Any):
         """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) under this version."""
-        from .hair import get_wig
-
-        config = get_wig(wig)
+        config = with_preset_fields(wig, self.preset_fields)
         if not self.wig_fields:
             return config
         try:
@@ -105,6 +115,12 @@ _V3_WIG_FIELDS: Mapping[str, Any] = {**_V2_WIG_FIELDS, "n_triples": 0}
 _V4_WIG_FIELDS: Mapping[str, Any] = {**_V3_WIG_FIELDS, "root_run": 0.5}
 _V5_WIG_FIELDS: Mapping[str, Any] = {**_V4_WIG_FIELDS, "root_run_min": 0.012}
 _V6_WIG_FIELDS: Mapping[str, Any] = {**_V5_WIG_FIELDS, "rest_splay": math.pi / 2, "root_twist_first": True}
+# v7's smaller curls: 8 edges per turn needs up to 42 edges (coily, 0.30 m at R = 9 mm), above the default cap of 32.
+_V7_PRESET_FIELDS: Mapping[str, Mapping[str, Any]] = {
+    "tight_curl": {"curl_radius": 0.010, "max_edges": 48},
+    "coily": {"curl_radius": 0.009, "max_edges": 48},
+    "held_out_tight": {"curl_radius": 0.011, "max_edges": 48},
+}
 
 PHYSICS: Mapping[str, PhysicsVersion] = {
     "v0": PhysicsVersion("v0", summary="rigid comb, hair-hair friction 0.3"),
@@ -145,7 +161,41 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         summary="v5 with each strand's rest shape turned by pi/2 about its root (twist hinge first), so a pair's "
         "strands rest apart across the tines",
     ),
+    "v7": PhysicsVersion(
+        "v7",
+        brush="wide_soft_comb",
+        wig_fields=_V6_WIG_FIELDS,
+        preset_fields=_V7_PRESET_FIELDS,
+        summary="v6 with smaller curls on tight_curl, coily and held_out_tight (curvature grows with curliness)",
+    ),
 }
+
+
+def with_preset_fields(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] | None):
+    """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) with
+    ``preset_fields[name]`` set when ``wig`` is the preset ``name``: given by its name, or as a config equal to the
+    preset. A config that differs from its preset (a custom wig, or a preset with fields of your own) is used as
+    given: the version re-sizes its presets, not your wigs."""
+    from .hair import get_wig
+
+    config = get_wig(wig)
+    if not preset_fields:
+        return config
+    if not isinstance(preset_fields, Mapping):
+        raise ValueError(f"preset_fields: expected a mapping of preset name to WigConfig fields, got {preset_fields!r}")
+    for name, fields in preset_fields.items():
+        try:
+            preset = get_wig(name)
+        except ValueError as exc:
+            raise ValueError(f"preset_fields: {exc}") from None
+        if not isinstance(fields, Mapping):
+            raise ValueError(f"preset_fields[{name!r}]: expected a mapping of WigConfig fields, got {fields!r}")
+        if config == preset:
+            try:
+                return preset.replace(**fields)
+            except (TypeError, ValueError) as exc:
+                raise ValueError(f"preset_fields[{name!r}]: {exc}") from None
+    return config
 
 
 def physics_help() -> str:

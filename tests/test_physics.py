@@ -13,6 +13,7 @@ from hairbrush_env.envs import (
     V4_PHYSICS,
     V5_PHYSICS,
     V6_PHYSICS,
+    V7_PHYSICS,
 )
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
@@ -27,7 +28,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -143,6 +144,50 @@ def test_v6_is_v5_with_the_strands_of_a_pair_resting_apart_across_the_tines() ->
     for name in ("wavy", "curly", "coily", "held_out_curly"):
         assert _root_middle_rest_deg("v6", name) < 25.0, name
     assert all(_pairs_parted_by_a_tine("v6", "curly"))  # the roots stay across the tines
+
+
+def _curl_curvature(w) -> float:
+    """Curvature of a wig's rest helix, R / (R² + (P/2π)²) [1/m] (0 for straight hair)."""
+    import math
+
+    if w.curliness == 0:
+        return 0.0
+    return w.curl_radius / (w.curl_radius**2 + (w.pitch / (2 * math.pi)) ** 2)
+
+
+def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() -> None:
+    """v7 shrinks the curls of tight_curl, coily and held_out_tight at the same R/P (v6: all three at 12 mm, like
+    curly), so that the curls' curvature, which sets the force of drawing them straight over the tines, grows with
+    curliness from preset to preset (docs/detangling.md, *HairBrush-v7*). Every preset keeps 8 edges per turn (the
+    chain's curl stiffness is within 10 % from 8 on). A custom wig, or a preset with a field of its own, is used as
+    given; unknown presets or fields in ``preset_fields`` are errors naming it."""
+    import math
+
+    from hairbrush_env.envs.common import apply_wig_fields
+    from hairbrush_env.hair import PRESETS
+    from hairbrush_env.physics import with_preset_fields
+
+    v6, v7 = get_physics("v6"), get_physics("v7")
+    assert v7.brush == v6.brush and dict(v7.wig_fields) == dict(v6.wig_fields)
+    assert ENV_IDS["HairBrush-v7"][2] == ENV_IDS["HairBrushContinuous-v7"][2] == V7_PHYSICS == v7.env_kwargs()
+    kappa = [_curl_curvature(v7.wig(name)) for name in PRESETS]  # straightest first
+    assert kappa == sorted(kappa) and len(set(kappa)) == len(kappa), kappa
+    v6_kappa = [_curl_curvature(v6.wig(n)) for n in ("curly", "tight_curl", "coily")]
+    assert max(v6_kappa) < 1.1 * min(v6_kappa)  # v6: within 10 % from curly to coily
+    for name in (*PRESETS, "held_out_curly", "held_out_tight"):
+        w6, w7 = v6.wig(name), v7.wig(name)
+        assert w7.curliness == w6.curliness and w7.length == w6.length, name
+        assert w7.n_edges >= math.ceil(w7.edges_per_turn * w7.turns) and w7.edges_per_turn == 8, name
+        changed = name in ("tight_curl", "coily", "held_out_tight")
+        assert (w7.curl_radius < w6.curl_radius) == changed and (w7.digest() != w6.digest()) == changed, name
+    assert math.isclose(v7.wig(PRESETS["coily"]).curl_radius, 0.009)  # a config equal to the preset is the preset
+    mine = get_wig("coily").replace(length=0.31)
+    assert v7.wig(mine).curl_radius == mine.curl_radius == 0.012  # your own coily is yours
+    assert apply_wig_fields(["coily", mine], None, v7.preset_fields)[0].curl_radius == 0.009
+    with pytest.raises(ValueError, match=r"preset_fields.*unknown preset 'frizzy'"):
+        with_preset_fields("coily", {"frizzy": {"curl_radius": 0.01}})
+    with pytest.raises(ValueError, match=r"preset_fields\['coily'\]"):
+        with_preset_fields("coily", {"coily": {"curl_radius": -1.0}})
 
 
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:

@@ -9,6 +9,7 @@
 - ``HairBrush-v4``, ``HairBrushContinuous-v4`` — the same envs with the v4 physics (:data:`V4_PHYSICS`).
 - ``HairBrush-v5``, ``HairBrushContinuous-v5`` — the same envs with the v5 physics (:data:`V5_PHYSICS`).
 - ``HairBrush-v6``, ``HairBrushContinuous-v6`` — the same envs with the v6 physics (:data:`V6_PHYSICS`).
+- ``HairBrush-v7``, ``HairBrushContinuous-v7`` — the same envs with the v7 physics (:data:`V7_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -29,6 +30,7 @@ __all__ = [
     "V4_PHYSICS",
     "V5_PHYSICS",
     "V6_PHYSICS",
+    "V7_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -55,6 +57,9 @@ V5_PHYSICS: dict = PHYSICS["v5"].env_kwargs()
 #: What v6 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v6"]`` (v5 with each strand's rest shape
 #: turned by π/2 about its root, ``WigConfig.rest_splay``, so a pair's combed-apart strands rest apart).
 V6_PHYSICS: dict = PHYSICS["v6"].env_kwargs()
+#: What v7 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v7"]`` (v6 with smaller curls on the
+#: curliest presets, ``preset_fields``, so their curvature grows with their curliness).
+V7_PHYSICS: dict = PHYSICS["v7"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -96,6 +101,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V6_PHYSICS,
+    ),
+    "HairBrush-v7": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V7_PHYSICS),
+    "HairBrushContinuous-v7": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V7_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

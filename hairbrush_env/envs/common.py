@@ -131,14 +131,23 @@ def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float, b
     )
 
 
-def apply_wig_fields(wigs: Sequence[Any], wig_fields: Mapping[str, Any] | None) -> list[Any]:
-    """``wigs`` (preset names or WigConfigs) with the WigConfig fields ``wig_fields`` set on every one.
+def apply_wig_fields(
+    wigs: Sequence[Any],
+    wig_fields: Mapping[str, Any] | None,
+    preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
+) -> list[Any]:
+    """``wigs`` (preset names or WigConfigs) with ``preset_fields[name]`` set on the presets it names
+    (:func:`hairbrush_env.physics.with_preset_fields`), then the WigConfig fields ``wig_fields`` on every one.
 
     An env version fixes the hair's contact model this way for every wig it is given (``HairBrush-v1``:
-    self-colliding strands, hair–hair friction 0.15); without ``wig_fields`` the wigs are returned as given.
+    self-colliding strands, hair–hair friction 0.15) and re-sizes presets (``HairBrush-v7``: smaller curls on the
+    curliest presets); without either the wigs are returned as given.
     """
     from ..hair import WigConfig, get_wig
+    from ..physics import with_preset_fields
 
+    if preset_fields:
+        wigs = [with_preset_fields(w, preset_fields) for w in wigs]
     if wig_fields is None:
         return list(wigs)
     if not isinstance(wig_fields, Mapping):
@@ -166,6 +175,7 @@ OBS_MODES = ("state", "image", "state+image")
 SHARED_ENV_ARGS = (
     "wig",
     "wig_fields",
+    "preset_fields",
     "brush",
     "obs_mode",
     "render_mode",
@@ -203,6 +213,7 @@ class BrushEnvBase(gym.Env):
         wig_seeds: Sequence[int] | None = None,
         state_cache_dir: str | None = None,
         wig_fields: Mapping[str, Any] | None = None,
+        preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
     ) -> None:
         from ..brush import get_brush
         from ..hair import StateCache
@@ -221,7 +232,7 @@ class BrushEnvBase(gym.Env):
         if not wigs:
             raise ValueError("wig: expected a preset name, a WigConfig or a non-empty list of them, got []")
         wigs = apply_wig_fields(
-            wigs, wig_fields
+            wigs, wig_fields, preset_fields
         )  # "wig: unknown preset ..." / "wig_fields: ..." before any build
         if not (0.0 <= detangled_fraction < 1.0):
             raise ValueError(f"detangled_fraction: must be in [0, 1), got {detangled_fraction!r}")

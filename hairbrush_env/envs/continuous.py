@@ -71,9 +71,9 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
 
     ## Arguments
-    `wig`, `wig_fields`, `brush`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`, `n_wig_states`,
-    `wig_seeds`, `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in `HairBrush-v0`, plus
-    `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
+    `wig`, `wig_fields`, `preset_fields`, `brush`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`,
+    `n_wig_states`, `wig_seeds`, `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in
+    `HairBrush-v0`, plus `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
 
     ## Version History
     - v0: initial release. Issue #11: the progress reward divides by at least one link (`PROGRESS_FLOOR`; only
@@ -84,6 +84,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     - v4: v0 with the v4 physics of `HairBrush-v4` (v3 with each pair curling from a different depth below its roots).
     - v5: v0 with the v5 physics of `HairBrush-v5` (v4 with every pair hanging straight for 12 mm below its roots).
     - v6: v0 with the v6 physics of `HairBrush-v6` (v5 with a pair's strands resting apart across the tines).
+    - v7: v0 with the v7 physics of `HairBrush-v7` (v6 with smaller curls on the curliest presets).
     """
 
     def __init__(
@@ -91,6 +92,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         *,
         wig: Any = "curly",
         wig_fields: Mapping[str, Any] | None = None,
+        preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
         brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,

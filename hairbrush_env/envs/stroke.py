@@ -107,6 +107,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       reset picks one with the env's RNG: one env, one observation space, several wigs, e.g. for training) |
     | `wig_fields` | `None` | `WigConfig` fields set on every wig (e.g. `{"friction": 0.15}`; v1 sets its contact
       model this way) |
+    | `preset_fields` | `None` | `WigConfig` fields set on named presets only (`{"coily": {"curl_radius": 0.009}}`;
+      v7 re-sizes its curliest presets' curls this way): a wig given by name, or as a config equal to the preset |
     | `brush` | `"comb"` | preset name from `hairbrush_env.brush.BRUSH_PRESETS` (`"comb"`, `"soft_comb"`, `"paddle"`)
       or a `BrushConfig` |
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
@@ -148,6 +150,9 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       (`WigConfig.rest_splay`, the root's twist hinge first: `WigConfig.root_twist_first`), so that a combed pair's
       two strands hang apart across the tines instead of on one axis (`hairbrush_env.envs.V6_PHYSICS`). Same
       spaces, rewards and episode rules.
+    - v7 (issue #11): v6 with smaller curls on `tight_curl` (10 mm), `coily` (9 mm) and `held_out_tight` (11 mm;
+      12 mm before) at the same R/P (`preset_fields`), so that a full stroke's force grows with curliness (Fig. 3.7)
+      (`hairbrush_env.envs.V7_PHYSICS`). Same spaces, rewards and episode rules; custom wigs brush as under v6.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
@@ -158,6 +163,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         *,
         wig: Any = "curly",
         wig_fields: Mapping[str, Any] | None = None,
+        preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
         brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,
