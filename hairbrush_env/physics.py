@@ -182,14 +182,18 @@ def with_preset_fields(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] 
     if not preset_fields:
         return config
     if not isinstance(preset_fields, Mapping):
-        raise ValueError(f"preset_fields: expected a mapping of preset name to WigConfig fields, got {preset_fields!r}")
+        raise ValueError(
+            f"preset_fields: expected a mapping of preset name to WigConfig fields, got {preset_fields!r}"
+        )
     for name, fields in preset_fields.items():
         try:
             preset = get_wig(name)
         except ValueError as exc:
             raise ValueError(f"preset_fields: {exc}") from None
         if not isinstance(fields, Mapping):
-            raise ValueError(f"preset_fields[{name!r}]: expected a mapping of WigConfig fields, got {fields!r}")
+            raise ValueError(
+                f"preset_fields[{name!r}]: expected a mapping of WigConfig fields, got {fields!r}"
+            )
         if config == preset:
             try:
                 return preset.replace(**fields)

@@ -119,7 +119,9 @@ def _root_middle_rest_deg(version: str, wig: str) -> float:
     add_wig(spec, cfg, parent_body=spec.worldbody)
     model = spec.compile()
     roots = [b for b in range(model.nbody) if model.body(b).name.endswith("_0") and model.body_jntnum[b] == 3]
-    middle = [model.body_jntadr[b] + 1 for b in roots]  # a body's hinges compose in order: the second is the middle
+    middle = [
+        model.body_jntadr[b] + 1 for b in roots
+    ]  # a body's hinges compose in order: the second is the middle
     return max(abs(math.degrees(float(model.qpos_spring[model.jnt_qposadr[j]]))) for j in middle)
 
 
@@ -180,7 +182,9 @@ def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() ->
         assert w7.n_edges >= math.ceil(w7.edges_per_turn * w7.turns) and w7.edges_per_turn == 8, name
         changed = name in ("tight_curl", "coily", "held_out_tight")
         assert (w7.curl_radius < w6.curl_radius) == changed and (w7.digest() != w6.digest()) == changed, name
-    assert math.isclose(v7.wig(PRESETS["coily"]).curl_radius, 0.009)  # a config equal to the preset is the preset
+    assert math.isclose(
+        v7.wig(PRESETS["coily"]).curl_radius, 0.009
+    )  # a config equal to the preset is the preset
     mine = get_wig("coily").replace(length=0.31)
     assert v7.wig(mine).curl_radius == mine.curl_radius == 0.012  # your own coily is yours
     assert apply_wig_fields(["coily", mine], None, v7.preset_fields)[0].curl_radius == 0.009
