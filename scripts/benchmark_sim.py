@@ -299,14 +299,8 @@ def section_pull_through(args: argparse.Namespace) -> None:
     seeds = (7,) if args.quick else (7, 11)
     base = hair.PRESETS[hair.DEFAULT_WIG]
     cases = list(wig_cases(base).items())[::-1]  # flex first: the reference
-    for version in (
-        "v1",
-        "v2",
-        "v3",
-        "v4",
-        "v5",
-        "v6",
-    ):  # HairBrush-vN's physics, the comb widened like the default's
+    # HairBrush-vN's physics, the comb widened like the default's (v7 brushes curly as v6 does)
+    for version in ("v1", "v2", "v3", "v4", "v5", "v6"):
         physics = PHYSICS[version]
         soft = dataclasses.replace(
             get_brush(physics.brush), columns=max(get_brush(physics.brush).columns, 2 * base.n_groups + 1)
