@@ -41,11 +41,12 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   (docs/detangling.md, *HairBrush-v6*).
 - ``v7``: v6 with the curls of the curliest presets smaller (``preset_fields``): ``curl_radius`` 10 mm on
   ``tight_curl``, 9 mm on ``coily``, 11 mm on ``held_out_tight`` (12 mm on all three before), at the same R/P, with
-  ``max_edges`` 48 so they keep 8 edges per turn. Under v6 a full stroke's force is the force that draws curls
-  straight over the tines, which grows with the curls' curvature (≈ 1/R once P ≪ 2πR), not with R/P: curly,
-  tight_curl and coily, all at R = 12 mm, read the same 11.7–12.3 N. Hair types are told apart by curvature (tighter
-  curls are smaller as well as steeper), and with it Fig. 3.7 orders by curliness (docs/detangling.md,
-  *HairBrush-v7*). Custom wigs and the other presets are v6's.
+  ``max_edges`` 48 so they keep 8 edges per turn, and their rest shapes turned by 2π/3 so that each coil still
+  reaches round the tine between groups. Under v6 a full stroke's force is the force that draws curls straight over
+  the tines, which grows with the curls' curvature (≈ 1/R once P ≪ 2πR), not with R/P: curly, tight_curl and
+  coily, all at R = 12 mm, read the same 11.7–12.3 N. Hair types are told apart by curvature (tighter curls are
+  smaller as well as steeper), and with it Fig. 3.7 orders by curliness (docs/detangling.md, *HairBrush-v7*).
+  Custom wigs and the other presets are v6's.
 """
 
 from __future__ import annotations
@@ -65,7 +66,7 @@ class PhysicsVersion:
     name: str
     brush: str = "comb"
     wig_fields: Mapping[str, Any] = field(default_factory=dict)
-    #: WigConfig fields set on the named presets only (before ``wig_fields``): how a version re-sizes a preset's
+    #: WigConfig fields set on the named presets only (after ``wig_fields``): how a version re-sizes a preset's
     #: curls. A wig given by name, or as a config equal to that preset, gets them; any other config is used as given.
     preset_fields: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
     #: What the version changes, in a few words (the CLI's help texts).
@@ -84,15 +85,18 @@ class PhysicsVersion:
 
     def wig(self, wig: Any):
         """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) under this version."""
-        config = with_preset_fields(wig, self.preset_fields)
-        if not self.wig_fields:
+        from .hair import get_wig
+
+        config = get_wig(wig)
+        fields = {**self.wig_fields, **preset_fields_of(config, self.preset_fields)}
+        if not fields:
             return config
         try:
-            return config.replace(**self.wig_fields)
+            return config.replace(**fields)
         except ValueError as exc:  # e.g. an odd n_strands under v3, which has no triples to make it up
-            fields = ", ".join(f"{k}={v!r}" for k, v in self.wig_fields.items())
+            sets = ", ".join(f"{k}={v!r}" for k, v in fields.items())
             raise ValueError(
-                f"wig {config.name!r} under physics {self.name} (which sets {fields}): {exc}"
+                f"wig {config.name!r} under physics {self.name} (which sets {sets}): {exc}"
             ) from None
 
     def scene_config(self, wig: Any, **fields: Any):
@@ -116,10 +120,15 @@ _V4_WIG_FIELDS: Mapping[str, Any] = {**_V3_WIG_FIELDS, "root_run": 0.5}
 _V5_WIG_FIELDS: Mapping[str, Any] = {**_V4_WIG_FIELDS, "root_run_min": 0.012}
 _V6_WIG_FIELDS: Mapping[str, Any] = {**_V5_WIG_FIELDS, "rest_splay": math.pi / 2, "root_twist_first": True}
 # v7's smaller curls: 8 edges per turn needs up to 42 edges (coily, 0.30 m at R = 9 mm), above the default cap of 32.
+# Each strand's helix axis rests R (1 − cos ψ) across the tines from its group's: at v6's ψ = π/2 a coil of R ≤ 10 mm
+# no longer reaches round the tine between groups (20 mm out; the coil spans 0–2R), nothing holds it on its side, and
+# a full stroke gathers both strands of a pair onto the middle tine again (coily, 9 mm: second stroke 18.9 N after
+# 18.3). At ψ = 2π/3 the coil spans 0.5R–2.5R: clear of the middle tine, round its own (2.5R > 20 mm from R = 8 mm).
+_V7_REST_SPLAY = 2.0 * math.pi / 3.0
 _V7_PRESET_FIELDS: Mapping[str, Mapping[str, Any]] = {
-    "tight_curl": {"curl_radius": 0.010, "max_edges": 48},
-    "coily": {"curl_radius": 0.009, "max_edges": 48},
-    "held_out_tight": {"curl_radius": 0.011, "max_edges": 48},
+    "tight_curl": {"curl_radius": 0.010, "max_edges": 48, "rest_splay": _V7_REST_SPLAY},
+    "coily": {"curl_radius": 0.009, "max_edges": 48, "rest_splay": _V7_REST_SPLAY},
+    "held_out_tight": {"curl_radius": 0.011, "max_edges": 48, "rest_splay": _V7_REST_SPLAY},
 }
 
 PHYSICS: Mapping[str, PhysicsVersion] = {
@@ -171,20 +180,21 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
 }
 
 
-def with_preset_fields(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] | None):
-    """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) with
-    ``preset_fields[name]`` set when ``wig`` is the preset ``name``: given by its name, or as a config equal to the
-    preset. A config that differs from its preset (a custom wig, or a preset with fields of your own) is used as
-    given: the version re-sizes its presets, not your wigs."""
+def preset_fields_of(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] | None) -> dict[str, Any]:
+    """The fields ``preset_fields[name]`` when ``wig`` (a preset name or a config) is the preset ``name``: given by
+    its name, or as a config equal to the preset; ``{}`` otherwise. A config that differs from its preset (a custom
+    wig, or a preset with fields of your own) gets none: a version re-sizes its presets, not your wigs. They are set
+    after the version's ``wig_fields`` (a preset's own fields win). ``ValueError`` names a bad entry."""
     from .hair import get_wig
 
     config = get_wig(wig)
     if not preset_fields:
-        return config
+        return {}
     if not isinstance(preset_fields, Mapping):
         raise ValueError(
             f"preset_fields: expected a mapping of preset name to WigConfig fields, got {preset_fields!r}"
         )
+    own: dict[str, Any] = {}
     for name, fields in preset_fields.items():
         try:
             preset = get_wig(name)
@@ -194,12 +204,13 @@ def with_preset_fields(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] 
             raise ValueError(
                 f"preset_fields[{name!r}]: expected a mapping of WigConfig fields, got {fields!r}"
             )
+        try:
+            preset.replace(**fields)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"preset_fields[{name!r}]: {exc}") from None
         if config == preset:
-            try:
-                return preset.replace(**fields)
-            except (TypeError, ValueError) as exc:
-                raise ValueError(f"preset_fields[{name!r}]: {exc}") from None
-    return config
+            own = dict(fields)
+    return own
 
 
 def physics_help() -> str:

@@ -160,14 +160,15 @@ def _curl_curvature(w) -> float:
 def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() -> None:
     """v7 shrinks the curls of tight_curl, coily and held_out_tight at the same R/P (v6: all three at 12 mm, like
     curly), so that the curls' curvature, which sets the force of drawing them straight over the tines, grows with
-    curliness from preset to preset (docs/detangling.md, *HairBrush-v7*). Every preset keeps 8 edges per turn (the
+    curliness from preset to preset, and turns their rest shapes by 2π/3 so that each coil still reaches round the
+    tine between groups (docs/detangling.md, *HairBrush-v7*). Every preset keeps 8 edges per turn (the
     chain's curl stiffness is within 10 % from 8 on). A custom wig, or a preset with a field of its own, is used as
     given; unknown presets or fields in ``preset_fields`` are errors naming it."""
     import math
 
     from hairbrush_env.envs.common import apply_wig_fields
     from hairbrush_env.hair import PRESETS
-    from hairbrush_env.physics import with_preset_fields
+    from hairbrush_env.physics import preset_fields_of
 
     v6, v7 = get_physics("v6"), get_physics("v7")
     assert v7.brush == v6.brush and dict(v7.wig_fields) == dict(v6.wig_fields)
@@ -182,16 +183,24 @@ def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() ->
         assert w7.n_edges >= math.ceil(w7.edges_per_turn * w7.turns) and w7.edges_per_turn == 8, name
         changed = name in ("tight_curl", "coily", "held_out_tight")
         assert (w7.curl_radius < w6.curl_radius) == changed and (w7.digest() != w6.digest()) == changed, name
-    assert math.isclose(
-        v7.wig(PRESETS["coily"]).curl_radius, 0.009
-    )  # a config equal to the preset is the preset
+    # Each strand's helix axis rests a = R (1 − cos ψ) across the tines from its group's axis, which a tine runs
+    # through; the next tine (between groups) is one pitch out. v7's coils clear the middle tine and reach round
+    # their own: at v6's ψ = π/2 a 9 mm coil spans 0–18 mm and reaches no tine.
+    pitch = get_brush(v7.brush).column_pitch
+    for name in ("tight_curl", "coily", "held_out_tight"):
+        w = v7.wig(name)
+        a = w.curl_radius * (1 - math.cos(w.rest_splay))
+        assert a - w.curl_radius > w.strand_radius and a + w.curl_radius > pitch, name
+    assert 2 * v7.wig("coily").curl_radius < pitch
+    assert v7.wig("coily").rest_splay == pytest.approx(2 * math.pi / 3)  # a preset's own fields win
+    assert v7.wig(PRESETS["coily"]).curl_radius == 0.009  # a config equal to the preset is the preset
     mine = get_wig("coily").replace(length=0.31)
     assert v7.wig(mine).curl_radius == mine.curl_radius == 0.012  # your own coily is yours
     assert apply_wig_fields(["coily", mine], None, v7.preset_fields)[0].curl_radius == 0.009
     with pytest.raises(ValueError, match=r"preset_fields.*unknown preset 'frizzy'"):
-        with_preset_fields("coily", {"frizzy": {"curl_radius": 0.01}})
+        preset_fields_of("coily", {"frizzy": {"curl_radius": 0.01}})
     with pytest.raises(ValueError, match=r"preset_fields\['coily'\]"):
-        with_preset_fields("coily", {"coily": {"curl_radius": -1.0}})
+        preset_fields_of("coily", {"coily": {"curl_radius": -1.0}})
 
 
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:

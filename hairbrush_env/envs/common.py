@@ -136,37 +136,37 @@ def apply_wig_fields(
     wig_fields: Mapping[str, Any] | None,
     preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
 ) -> list[Any]:
-    """``wigs`` (preset names or WigConfigs) with ``preset_fields[name]`` set on the presets it names
-    (:func:`hairbrush_env.physics.with_preset_fields`), then the WigConfig fields ``wig_fields`` on every one.
+    """``wigs`` (preset names or WigConfigs) with the WigConfig fields ``wig_fields`` set on every one, then
+    ``preset_fields[name]`` on the presets it names (:func:`hairbrush_env.physics.preset_fields_of`).
 
     An env version fixes the hair's contact model this way for every wig it is given (``HairBrush-v1``:
     self-colliding strands, hair–hair friction 0.15) and re-sizes presets (``HairBrush-v7``: smaller curls on the
     curliest presets); without either the wigs are returned as given.
     """
     from ..hair import WigConfig, get_wig
-    from ..physics import with_preset_fields
+    from ..physics import preset_fields_of
 
-    if preset_fields:
-        wigs = [with_preset_fields(w, preset_fields) for w in wigs]
-    if wig_fields is None:
+    if wig_fields is None and not preset_fields:
         return list(wigs)
-    if not isinstance(wig_fields, Mapping):
+    if wig_fields is not None and not isinstance(wig_fields, Mapping):
         raise ValueError(f"wig_fields: expected a mapping of WigConfig fields, got {wig_fields!r}")
     known = {f.name for f in fields(WigConfig)} - {"name"}
-    unknown = sorted(set(wig_fields) - known)
+    unknown = sorted(set(wig_fields or {}) - known)
     if unknown:
         raise ValueError(
             f"wig_fields: unknown WigConfig field(s) {unknown}; valid: {', '.join(sorted(known))}"
         )
     out = []
     for w in [get_wig(w) for w in wigs]:
+        own = preset_fields_of(w, preset_fields)  # decided on the wig as given, before wig_fields
         try:
-            out.append(w.replace(**wig_fields))
+            w = w.replace(**wig_fields) if wig_fields else w
         except (
             TypeError,
             ValueError,
         ) as err:  # a WigConfig validation error names the field; say where it came from
             raise ValueError(f"wig_fields: {err}") from err
+        out.append(w.replace(**own) if own else w)
     return out
 
 

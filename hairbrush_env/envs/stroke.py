@@ -151,8 +151,9 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       two strands hang apart across the tines instead of on one axis (`hairbrush_env.envs.V6_PHYSICS`). Same
       spaces, rewards and episode rules.
     - v7 (issue #11): v6 with smaller curls on `tight_curl` (10 mm), `coily` (9 mm) and `held_out_tight` (11 mm;
-      12 mm before) at the same R/P (`preset_fields`), so that a full stroke's force grows with curliness (Fig. 3.7)
-      (`hairbrush_env.envs.V7_PHYSICS`). Same spaces, rewards and episode rules; custom wigs brush as under v6.
+      12 mm before) at the same R/P, their rest shapes turned by 2π/3 (`preset_fields`), so that a full stroke's
+      force grows with curliness (Fig. 3.7) (`hairbrush_env.envs.V7_PHYSICS`). Same spaces, rewards and episode
+      rules; custom wigs brush as under v6.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
