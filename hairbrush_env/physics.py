@@ -91,6 +91,9 @@ class PhysicsVersion:
         fields = {**self.wig_fields, **preset_fields_of(config, self.preset_fields)}
         if not fields:
             return config
+        for name, own in self.preset_fields.items():
+            if config == get_wig(name).replace(**{**self.wig_fields, **own}):
+                return config  # already this version's preset (wig() of a wig() result changes nothing)
         try:
             return config.replace(**fields)
         except ValueError as exc:  # e.g. an odd n_strands under v3, which has no triples to make it up

@@ -194,6 +194,10 @@ def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() ->
     assert 2 * v7.wig("coily").curl_radius < pitch
     assert v7.wig("coily").rest_splay == pytest.approx(2 * math.pi / 3)  # a preset's own fields win
     assert v7.wig(PRESETS["coily"]).curl_radius == 0.009  # a config equal to the preset is the preset
+    assert v7.wig(v7.wig("coily")) == v7.wig(
+        "coily"
+    )  # and a version's preset stays itself (the studies do this)
+    assert v7.scene_config(v7.wig("coily")).wig_config == v7.wig("coily")
     mine = get_wig("coily").replace(length=0.31)
     assert v7.wig(mine).curl_radius == mine.curl_radius == 0.012  # your own coily is yours
     assert apply_wig_fields(["coily", mine], None, v7.preset_fields)[0].curl_radius == 0.009
