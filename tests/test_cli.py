@@ -164,7 +164,7 @@ BAD_INPUT = [
     (["repeat", "--strokes", "0"], ["--strokes", "'0'"]),
     (["repeat", "--physics", "v9"], ["--physics", "'v9'"]),
     (["compare", "--physics", "v1.5"], ["--physics", "'v1.5'"]),
-    (["rollout", "--env", "HairBrush-v7"], ["--env", "'HairBrush-v7'"]),
+    (["rollout", "--env", "HairBrush-v9"], ["--env", "'HairBrush-v9'"]),
     (["topology", "demo", "--frames", "-3"], ["--frames", "-3"]),
     (["topology", "lk", "{d}/malformed.csv", "{d}/ring.csv"], ["curve_a", "malformed.csv"]),
     (["topology", "lk", "{d}/ring.csv", "{d}/missing.csv"], ["curve_b", "missing.csv"]),

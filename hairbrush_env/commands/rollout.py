@@ -109,11 +109,22 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     from ..envs import ENV_IDS
     from ..physics import physics_help
 
+    def env_id(text: str) -> str:
+        if text in ENV_IDS:
+            return text
+        # a compact list: the ids are the two envs at every physics version
+        versions = sorted({int(k.rsplit("-v", 1)[1]) for k in ENV_IDS})
+        raise argparse.ArgumentTypeError(
+            f"unknown env id {text!r}; valid: HairBrush-vN and HairBrushContinuous-vN for N = "
+            f"{versions[0]}…{versions[-1]}"
+        )
+
     p.add_argument(
         "--env",
         default="HairBrush-v0",
-        choices=list(ENV_IDS),
-        help=f"env id; its version's physics: {physics_help()}",
+        type=env_id,
+        metavar="ENV",
+        help=f"env id (HairBrush-vN or HairBrushContinuous-vN); its version's physics: {physics_help()}",
     )
     p.add_argument("--wig", type=wig_name, default="curly", help=f"wig: {', '.join(wig_choices())}")
     p.add_argument(
