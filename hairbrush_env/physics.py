@@ -89,11 +89,8 @@ class PhysicsVersion:
 
         config = get_wig(wig)
         fields = {**self.wig_fields, **preset_fields_of(config, self.preset_fields)}
-        if not fields:
+        if not fields or is_versioned_preset(config, self.wig_fields, self.preset_fields):
             return config
-        for name, own in self.preset_fields.items():
-            if config == get_wig(name).replace(**{**self.wig_fields, **own}):
-                return config  # already this version's preset (wig() of a wig() result changes nothing)
         try:
             return config.replace(**fields)
         except ValueError as exc:  # e.g. an odd n_strands under v3, which has no triples to make it up
@@ -178,7 +175,8 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         brush="wide_soft_comb",
         wig_fields=_V6_WIG_FIELDS,
         preset_fields=_V7_PRESET_FIELDS,
-        summary="v6 with smaller curls on tight_curl, coily and held_out_tight (curvature grows with curliness)",
+        summary="v6 with smaller curls on tight_curl, coily and held_out_tight (curvature grows with curliness), "
+        "their rest shapes turned by 2pi/3",
     ),
 }
 
@@ -214,6 +212,19 @@ def preset_fields_of(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] | 
         if config == preset:
             own = dict(fields)
     return own
+
+
+def is_versioned_preset(
+    config: Any, wig_fields: Mapping[str, Any] | None, preset_fields: Mapping[str, Mapping[str, Any]] | None
+) -> bool:
+    """Whether ``config`` already is a preset with ``wig_fields`` and its own ``preset_fields`` set, so that setting
+    them again changes nothing (``wig_fields`` alone would undo a preset's own value of a field both set)."""
+    from .hair import get_wig
+
+    return any(
+        config == get_wig(name).replace(**{**(wig_fields or {}), **own})
+        for name, own in (preset_fields or {}).items()
+    )
 
 
 def physics_help() -> str:

@@ -201,6 +201,8 @@ def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() ->
     mine = get_wig("coily").replace(length=0.31)
     assert v7.wig(mine).curl_radius == mine.curl_radius == 0.012  # your own coily is yours
     assert apply_wig_fields(["coily", mine], None, v7.preset_fields)[0].curl_radius == 0.009
+    kw = V7_PHYSICS
+    assert apply_wig_fields([v7.wig("coily")], kw["wig_fields"], kw["preset_fields"]) == [v7.wig("coily")]
     with pytest.raises(ValueError, match=r"preset_fields.*unknown preset 'frizzy'"):
         preset_fields_of("coily", {"frizzy": {"curl_radius": 0.01}})
     with pytest.raises(ValueError, match=r"preset_fields\['coily'\]"):

@@ -144,7 +144,7 @@ def apply_wig_fields(
     curliest presets); without either the wigs are returned as given.
     """
     from ..hair import WigConfig, get_wig
-    from ..physics import preset_fields_of
+    from ..physics import is_versioned_preset, preset_fields_of
 
     if wig_fields is None and not preset_fields:
         return list(wigs)
@@ -158,6 +158,11 @@ def apply_wig_fields(
         )
     out = []
     for w in [get_wig(w) for w in wigs]:
+        if is_versioned_preset(
+            w, wig_fields, preset_fields
+        ):  # e.g. PHYSICS["v7"].wig("coily") given to HairBrush-v7
+            out.append(w)
+            continue
         own = preset_fields_of(w, preset_fields)  # decided on the wig as given, before wig_fields
         try:
             w = w.replace(**wig_fields) if wig_fields else w
