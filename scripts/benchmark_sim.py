@@ -12,7 +12,8 @@ Sections (each prints a markdown table; every row of a table comes from this one
 * ``pass_through`` — full strokes through straight, curly and coily at three seeds, every physics step checked;
 * ``profile`` — where a stroke's CPU goes: MuJoCo's stages, the Python around them, the per-step pass-through check;
 * ``levers`` — what solver options, sensors, the exclude list or a 2 ms contact step would save per stroke;
-* ``force_table`` — maximum force vs curliness and b_l (thesis Fig. 3.7) with the per-step pass-through check.
+* ``force_table`` — maximum force vs curliness and b_l (thesis Fig. 3.7) with the per-step pass-through check;
+* ``curliest`` — a full stroke through tight_curl and coily under v6 and v7 (v7's smaller curls need more edges).
 
 Cases: ``chain (default)`` (the default wig and comb), ``flex wave 1`` (the first release's wig and scene,
 ``scene.wave1_scene``: DER flex, 5 edges per curl turn, ≤ 16 edges, κ = 50, compact lattice, paddle brush, short pull)
@@ -422,6 +423,32 @@ def section_levers(args: argparse.Namespace) -> None:
     print(_table(["contact step", "CPU s (with the check)", "steps", "crossings", "hair–hair / Σr"], rows))
 
 
+def section_curliest(args: argparse.Namespace) -> None:
+    """Full pull-through stroke through tight_curl and coily under v6 and v7, side by side (v7's curls are smaller at
+    the same R/P, so they need more edges for 8 per turn)."""
+    seeds = (7,) if args.quick else (7, 11)
+    print(
+        f"\n## The curliest presets under v6 and v7: full stroke, b_l = 1, no abort, seeds {seeds}, CPU time\n"
+    )
+    rows = []
+    for name in ("tight_curl", "coily"):
+        cpu_v6 = None
+        for version in ("v6", "v7"):
+            physics = PHYSICS[version]
+            wig = physics.wig(name)
+            sim = scene.BrushingSim(physics.scene_config(name))
+            st = [stroke_stats(sim, s) for s in seeds]
+            sim.close()
+            cpu = float(np.mean([s["cpu"] for s in st]))
+            cpu_v6 = cpu if cpu_v6 is None else cpu_v6
+            steps = float(np.mean([s["steps"] for s in st]))
+            rows.append([name, version, f"{1e3 * wig.curl_radius:.0f}", str(wig.n_edges),
+                         " / ".join(f"{s['cpu']:.1f}" for s in st), f"{cpu / cpu_v6:.2f}",
+                         f"{1e3 * cpu / steps:.2f}", " / ".join(f"{s['f_max']:.1f}" for s in st)])  # fmt: skip
+    print(_table(["wig", "physics", "R mm", "edges", "CPU s/stroke per seed", "× v6's CPU", "CPU ms/step",
+                  "F_max N per seed"], rows))  # fmt: skip
+
+
 SECTIONS: list[Callable[[argparse.Namespace], None]] = [
     section_validation,
     section_rest,
@@ -432,6 +459,7 @@ SECTIONS: list[Callable[[argparse.Namespace], None]] = [
     section_profile,
     section_levers,
     section_force_table,
+    section_curliest,
 ]
 
 
