@@ -203,6 +203,21 @@ def _six_strokes_under(version: str, wig: str, seed: int) -> list[dict]:
     return repeated_strokes(BrushingSim(get_physics(version).scene_config(wig)), seed=seed, n_strokes=6)
 
 
+def _assert_two_strokes_comb_out(
+    version: str, wig: str, *, first_at_least: float, second_below: float, left_at_most: float
+) -> None:
+    """Fig. 3.6(i) reduced to two full strokes on ``wig`` seed 0 under ``version``: the first reads ≥
+    ``first_at_least``, the second < ``second_below`` × the first, ≤ ``left_at_most`` of the entanglement is left, and
+    no strand crosses another or comes closer than half its diameter to itself."""
+    from hairbrush_env.physics import get_physics
+
+    rows = repeated_strokes(BrushingSim(get_physics(version).scene_config(wig)), seed=0, n_strokes=2)
+    first, second = rows[1]["max_force"], rows[2]["max_force"]
+    assert first >= first_at_least and second < second_below * first, (first, second)
+    assert rows[-1]["entanglement"] <= left_at_most * rows[0]["entanglement"]
+    _assert_no_pass_through(rows)
+
+
 @pytest.fixture(scope="module")
 def six_strokes_v2() -> dict[tuple[str, int], list[dict]]:
     return {(w, s): _six_strokes_under("v2", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
@@ -213,13 +228,9 @@ def test_fig_3_6_curly_under_v2_reduced():
     """Fig. 3.6(i) under ``HairBrush-v2``'s physics, reduced to two full strokes on curly seed 0: the first reads
     near F_T (measured 10.2 N), the second less than half of it (3.6 N), two strokes leave ≤ 40 % of the
     entanglement (0.32), and no strand crosses another or comes closer than half its diameter to itself."""
-    from hairbrush_env.physics import get_physics
-
-    rows = repeated_strokes(BrushingSim(get_physics("v2").scene_config("curly")), seed=0, n_strokes=2)
-    first, second = rows[1]["max_force"], rows[2]["max_force"]
-    assert first >= 0.8 * PAIN_THRESHOLD and second < 0.5 * first, (first, second)
-    assert rows[-1]["entanglement"] <= 0.4 * rows[0]["entanglement"]
-    _assert_no_pass_through(rows)
+    _assert_two_strokes_comb_out(
+        "v2", "curly", first_at_least=0.8 * PAIN_THRESHOLD, second_below=0.5, left_at_most=0.4
+    )
 
 
 @pytest.mark.slow
@@ -255,13 +266,9 @@ def test_fig_3_6_curly_under_v3_reduced():
     """Fig. 3.6(i) under ``HairBrush-v3`` (pairs only), reduced to two full strokes on curly seed 0: the first reads
     above F_T (measured 11.4 N), the second much less (5.5 N), two strokes leave ≤ 30 % of the entanglement (0.23;
     v2 with its triples: 0.32), and no strand crosses another or comes closer than half its diameter to itself."""
-    from hairbrush_env.physics import get_physics
-
-    rows = repeated_strokes(BrushingSim(get_physics("v3").scene_config("curly")), seed=0, n_strokes=2)
-    first, second = rows[1]["max_force"], rows[2]["max_force"]
-    assert first >= PAIN_THRESHOLD and second < 0.6 * first, (first, second)
-    assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-    _assert_no_pass_through(rows)
+    _assert_two_strokes_comb_out(
+        "v3", "curly", first_at_least=PAIN_THRESHOLD, second_below=0.6, left_at_most=0.3
+    )
 
 
 @pytest.fixture(scope="module")
@@ -287,13 +294,9 @@ def test_fig_3_6_curly_under_v5_reduced():
     on curly seed 0: the first reads near F_T (measured 10.5 N), the second much less (4.4 N), two strokes leave
     ≤ 30 % of the entanglement (0.15; v4: 0.25), and no strand crosses another or comes closer than half its
     diameter to itself."""
-    from hairbrush_env.physics import get_physics
-
-    rows = repeated_strokes(BrushingSim(get_physics("v5").scene_config("curly")), seed=0, n_strokes=2)
-    first, second = rows[1]["max_force"], rows[2]["max_force"]
-    assert first >= 0.9 * PAIN_THRESHOLD and second < 0.6 * first, (first, second)
-    assert rows[-1]["entanglement"] <= 0.3 * rows[0]["entanglement"]
-    _assert_no_pass_through(rows)
+    _assert_two_strokes_comb_out(
+        "v5", "curly", first_at_least=0.9 * PAIN_THRESHOLD, second_below=0.6, left_at_most=0.3
+    )
 
 
 @pytest.fixture(scope="module")
@@ -333,13 +336,9 @@ def test_fig_3_6_coily_under_v6_reduced():
     full strokes on coily seed 0: the first reads above F_T (measured 11.4 N), the second far less (2.8 N; under v5
     it read more than the first, 11.1 after 9.4 N, its strands left on one axis), two strokes leave ≤ 15 % of the
     entanglement (0.08), and no strand crosses another or comes closer than half its diameter to itself."""
-    from hairbrush_env.physics import get_physics
-
-    rows = repeated_strokes(BrushingSim(get_physics("v6").scene_config("coily")), seed=0, n_strokes=2)
-    first, second = rows[1]["max_force"], rows[2]["max_force"]
-    assert first >= PAIN_THRESHOLD and second < 0.5 * first, (first, second)
-    assert rows[-1]["entanglement"] <= 0.15 * rows[0]["entanglement"]
-    _assert_no_pass_through(rows)
+    _assert_two_strokes_comb_out(
+        "v6", "coily", first_at_least=PAIN_THRESHOLD, second_below=0.5, left_at_most=0.15
+    )
 
 
 @pytest.fixture(scope="module")
@@ -366,13 +365,9 @@ def test_fig_3_6_coily_under_v7_reduced():
     v6's π/2 at 9 mm, 17.18 N: the coils reached no tine and the first stroke gathered each pair onto the middle
     one), two strokes leave ≤ 15 % of the entanglement (0.04), and no strand crosses another or comes closer than
     half its diameter to itself."""
-    from hairbrush_env.physics import get_physics
-
-    rows = repeated_strokes(BrushingSim(get_physics("v7").scene_config("coily")), seed=0, n_strokes=2)
-    first, second = rows[1]["max_force"], rows[2]["max_force"]
-    assert first >= PAIN_THRESHOLD and second < 0.5 * first, (first, second)
-    assert rows[-1]["entanglement"] <= 0.15 * rows[0]["entanglement"]
-    _assert_no_pass_through(rows)
+    _assert_two_strokes_comb_out(
+        "v7", "coily", first_at_least=PAIN_THRESHOLD, second_below=0.5, left_at_most=0.15
+    )
 
 
 @pytest.fixture(scope="module")
