@@ -87,14 +87,11 @@ class PhysicsVersion:
         """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) under this version."""
         from .hair import get_wig
 
-        config = get_wig(wig)
-        fields = {**self.wig_fields, **preset_fields_of(config, self.preset_fields)}
-        if not fields or is_versioned_preset(config, self.wig_fields, self.preset_fields):
-            return config
+        config = get_wig(wig)  # "wig: unknown preset ..." as it is
         try:
-            return config.replace(**fields)
+            return versioned_wig(config, self.wig_fields, self.preset_fields)
         except ValueError as exc:  # e.g. an odd n_strands under v3, which has no triples to make it up
-            sets = ", ".join(f"{k}={v!r}" for k, v in fields.items())
+            sets = ", ".join(f"{k}={v!r}" for k, v in self.wig_fields.items())
             raise ValueError(
                 f"wig {config.name!r} under physics {self.name} (which sets {sets}): {exc}"
             ) from None
@@ -214,17 +211,24 @@ def preset_fields_of(wig: Any, preset_fields: Mapping[str, Mapping[str, Any]] | 
     return own
 
 
-def is_versioned_preset(
-    config: Any, wig_fields: Mapping[str, Any] | None, preset_fields: Mapping[str, Mapping[str, Any]] | None
-) -> bool:
-    """Whether ``config`` already is a preset with ``wig_fields`` and its own ``preset_fields`` set, so that setting
-    them again changes nothing (``wig_fields`` alone would undo a preset's own value of a field both set)."""
+def versioned_wig(
+    wig: Any, wig_fields: Mapping[str, Any] | None, preset_fields: Mapping[str, Mapping[str, Any]] | None
+):
+    """The :class:`~hairbrush_env.hair.WigConfig` of ``wig`` (a preset name or a config) with ``wig_fields`` set, and
+    then, when ``wig`` as given is one of the presets ``preset_fields`` names, that preset's own fields
+    (:func:`preset_fields_of`). A config that already is such a versioned preset is returned as it is: setting
+    ``wig_fields`` again would undo a preset's own value of a field both set. What :meth:`PhysicsVersion.wig` and
+    the envs' ``wig_fields`` / ``preset_fields`` arguments both do."""
     from .hair import get_wig
 
-    return any(
-        config == get_wig(name).replace(**{**(wig_fields or {}), **own})
-        for name, own in (preset_fields or {}).items()
-    )
+    config = get_wig(wig)
+    fields = {**(wig_fields or {}), **preset_fields_of(config, preset_fields)}
+    if not fields:
+        return config
+    for name, own in (preset_fields or {}).items():
+        if config == get_wig(name).replace(**{**(wig_fields or {}), **own}):
+            return config
+    return config.replace(**fields)
 
 
 def physics_help() -> str:

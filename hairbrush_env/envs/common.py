@@ -137,14 +137,14 @@ def apply_wig_fields(
     preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
 ) -> list[Any]:
     """``wigs`` (preset names or WigConfigs) with the WigConfig fields ``wig_fields`` set on every one, then
-    ``preset_fields[name]`` on the presets it names (:func:`hairbrush_env.physics.preset_fields_of`).
+    ``preset_fields[name]`` on the presets it names (:func:`hairbrush_env.physics.versioned_wig`).
 
     An env version fixes the hair's contact model this way for every wig it is given (``HairBrush-v1``:
     self-colliding strands, hair–hair friction 0.15) and re-sizes presets (``HairBrush-v7``: smaller curls on the
     curliest presets); without either the wigs are returned as given.
     """
-    from ..hair import WigConfig, get_wig
-    from ..physics import is_versioned_preset, preset_fields_of
+    from ..hair import WigConfig
+    from ..physics import preset_fields_of, versioned_wig
 
     if wig_fields is None and not preset_fields:
         return list(wigs)
@@ -157,21 +157,17 @@ def apply_wig_fields(
             f"wig_fields: unknown WigConfig field(s) {unknown}; valid: {', '.join(sorted(known))}"
         )
     out = []
-    for w in [get_wig(w) for w in wigs]:
-        if is_versioned_preset(
-            w, wig_fields, preset_fields
-        ):  # e.g. PHYSICS["v7"].wig("coily") given to HairBrush-v7
-            out.append(w)
-            continue
-        own = preset_fields_of(w, preset_fields)  # decided on the wig as given, before wig_fields
+    for w in wigs:
+        preset_fields_of(
+            w, preset_fields
+        )  # "wig: unknown preset ..." / "preset_fields[...]: ..." named as such
         try:
-            w = w.replace(**wig_fields) if wig_fields else w
+            out.append(versioned_wig(w, wig_fields, preset_fields))
         except (
             TypeError,
             ValueError,
         ) as err:  # a WigConfig validation error names the field; say where it came from
             raise ValueError(f"wig_fields: {err}") from err
-        out.append(w.replace(**own) if own else w)
     return out
 
 
