@@ -191,6 +191,12 @@ BRUSH_PRESETS: dict[str, BrushConfig] = {
 # The soft comb two tines wider (±240 mm): it spans a curtain of twelve pairs (24 strands without triples, 40 mm
 # apart: group axes at ±220 mm, curls out to ±232 mm), with a tine through every group axis and between neighbours.
 BRUSH_PRESETS["wide_soft_comb"] = dataclasses.replace(BRUSH_PRESETS["soft_comb"], columns=25)
+# MuJoCo takes the larger of two geoms' friction coefficients, so hair slides on a tine at the tine's coefficient
+# unless it is the lower one: at 0.15 (the conditioned hair's, HairBrush-v1 on) hair slides on the tines as on hair.
+# A curl through which a tine is pulled along its axis is a screw: it turns and lets the tine through only while
+# μ < tan λ = P / (2π R) (its lead angle), else it locks and is drawn straight. At 0.3, curly (0.32) is just free and
+# tight_curl (0.25) and coily (0.20) lock; at 0.15 every preset's curl turns (docs/detangling.md, *HairBrush-v8*).
+BRUSH_PRESETS["smooth_comb"] = dataclasses.replace(BRUSH_PRESETS["wide_soft_comb"], friction=0.15)
 """Named brushes. ``comb`` (the scenes' default): one row of 23 rigid 60 mm tines at 20 mm (±220 mm), spanning the
 default one-group-deep curtain (``WigConfig.group_rows = 1``, 40 mm group spacing): every group axis has a tine
 through it and a tine between neighbouring groups, so each stroke parts the strands of every pair; 60 mm crosses a
@@ -201,7 +207,8 @@ at 6 mm, kept for the wave-1 benchmarks; it pushes whole groups aside and winds 
 soft-bristled brush, for studies of bristle compliance: it frees a pair whose wound free ends lock on a rigid tine,
 but over repeated strokes jams occur elsewhere and it combs out no better (``docs/detangling.md``, *Jams,
 soft tines*). ``wide_soft_comb``: ``soft_comb`` with 25 tines (±240 mm), for the twelve-pair curtain of
-``HairBrush-v3``."""
+``HairBrush-v3``. ``smooth_comb``: ``wide_soft_comb`` with tines of friction 0.15, the conditioned hair's, for
+``HairBrush-v8``: curls turn round a tine pulled through them instead of locking on it."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:

@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v7`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v8`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -47,6 +47,12 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   coily, all at R = 12 mm, read the same 11.7–12.3 N. Hair types are told apart by curvature (tighter curls are
   smaller as well as steeper), and with it Fig. 3.7 orders by curliness (docs/detangling.md, *HairBrush-v7*).
   Custom wigs and the other presets are v6's.
+- ``v8``: v7 with the ``smooth_comb``, whose tines hair slides on at its own friction 0.15. MuJoCo takes the larger
+  of two geoms' coefficients, so under v1–v7 hair slid on the tines at their 0.3. A curl with a tine pulled through
+  it is a screw: it turns round the tine only while μ < tan λ = P / (2π R), and otherwise locks on it and is dragged
+  and drawn straight (:mod:`hairbrush_env.studies.screw_lock`). At 0.3 tight_curl's (0.25) and coily's (0.20) curls
+  locked and curly's (0.32) nearly did, at any start height: their short strokes read almost what full ones read.
+  At 0.15 every preset's curls turn (docs/detangling.md, *HairBrush-v8*).
 """
 
 from __future__ import annotations
@@ -174,6 +180,14 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         preset_fields=_V7_PRESET_FIELDS,
         summary="v6 with smaller curls on tight_curl, coily and held_out_tight (curvature grows with curliness), "
         "their rest shapes turned by 2pi/3",
+    ),
+    "v8": PhysicsVersion(
+        "v8",
+        brush="smooth_comb",
+        wig_fields=_V6_WIG_FIELDS,
+        preset_fields=_V7_PRESET_FIELDS,
+        summary="v7 with tines that hair slides on at its own friction 0.15 (curls turn round a tine instead of "
+        "locking on it)",
     ),
 }
 

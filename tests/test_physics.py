@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import dataclasses
+
 import pytest
 
 from hairbrush_env.brush import get_brush
@@ -14,6 +16,7 @@ from hairbrush_env.envs import (
     V5_PHYSICS,
     V6_PHYSICS,
     V7_PHYSICS,
+    V8_PHYSICS,
 )
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
@@ -28,7 +31,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -207,6 +210,34 @@ def test_v7_is_v6_with_curvature_growing_with_curliness_on_the_presets_only() ->
         preset_fields_of("coily", {"frizzy": {"curl_radius": 0.01}})
     with pytest.raises(ValueError, match=r"preset_fields\['coily'\]"):
         preset_fields_of("coily", {"coily": {"curl_radius": -1.0}})
+
+
+def test_v8_is_v7_with_tines_every_preset_curl_turns_round() -> None:
+    """v8 changes only the comb's tine friction, to the hair's own 0.15 (MuJoCo takes the larger coefficient, so under
+    v7 hair slid on tines at 0.3). A curl is a screw to a tine pulled through it
+    (:mod:`hairbrush_env.studies.screw_lock`): it turns only below its lead angle's tangent P / (2πR). Under v8 every
+    curled preset's curls are below it, under v7 tight_curl's and coily's were above it (docs/detangling.md,
+    *HairBrush-v8*)."""
+    from hairbrush_env.hair import PRESETS
+    from hairbrush_env.studies.screw_lock import lead_tangent
+
+    v7, v8 = get_physics("v7"), get_physics("v8")
+    assert dict(v8.wig_fields) == dict(v7.wig_fields) and dict(v8.preset_fields) == dict(v7.preset_fields)
+    b7, b8 = get_brush(v7.brush), get_brush(v8.brush)
+    assert dataclasses.replace(b8, friction=b7.friction) == b7
+    assert ENV_IDS["HairBrush-v8"][2] == ENV_IDS["HairBrushContinuous-v8"][2] == V8_PHYSICS == v8.env_kwargs()
+    for name in (*PRESETS, "held_out_curly", "held_out_tight"):
+        w7, w8 = v7.wig(name), v8.wig(name)
+        assert w8 == w7, name
+        if w8.curliness == 0:
+            continue
+        tan_lead = lead_tangent(w8.curl_radius, w8.pitch)
+        mu7, mu8 = max(b7.friction, w7.friction), max(b8.friction, w8.friction)
+        assert mu8 == w8.friction == 0.15 and mu8 < 0.8 * tan_lead, (
+            name
+        )  # turns with a margin (screw_lock's test)
+        if name in ("tight_curl", "coily"):
+            assert mu7 > tan_lead, name  # locked under v7
 
 
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:

@@ -10,6 +10,7 @@
 - ``HairBrush-v5``, ``HairBrushContinuous-v5`` — the same envs with the v5 physics (:data:`V5_PHYSICS`).
 - ``HairBrush-v6``, ``HairBrushContinuous-v6`` — the same envs with the v6 physics (:data:`V6_PHYSICS`).
 - ``HairBrush-v7``, ``HairBrushContinuous-v7`` — the same envs with the v7 physics (:data:`V7_PHYSICS`).
+- ``HairBrush-v8``, ``HairBrushContinuous-v8`` — the same envs with the v8 physics (:data:`V8_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -31,6 +32,7 @@ __all__ = [
     "V5_PHYSICS",
     "V6_PHYSICS",
     "V7_PHYSICS",
+    "V8_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -60,6 +62,9 @@ V6_PHYSICS: dict = PHYSICS["v6"].env_kwargs()
 #: What v7 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v7"]`` (v6 with smaller curls on the
 #: curliest presets, ``preset_fields``, so their curvature grows with their curliness).
 V7_PHYSICS: dict = PHYSICS["v7"].env_kwargs()
+#: What v8 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v8"]`` (v7 with the ``smooth_comb``, whose
+#: tines hair slides on at its own friction 0.15, so curls turn round a tine instead of locking on it).
+V8_PHYSICS: dict = PHYSICS["v8"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -107,6 +112,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V7_PHYSICS,
+    ),
+    "HairBrush-v8": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V8_PHYSICS),
+    "HairBrushContinuous-v8": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V8_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

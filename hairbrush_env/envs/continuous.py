@@ -85,6 +85,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     - v5: v0 with the v5 physics of `HairBrush-v5` (v4 with every pair hanging straight for 12 mm below its roots).
     - v6: v0 with the v6 physics of `HairBrush-v6` (v5 with a pair's strands resting apart across the tines).
     - v7: v0 with the v7 physics of `HairBrush-v7` (v6 with smaller curls on the curliest presets).
+    - v8: v0 with the v8 physics of `HairBrush-v8` (v7 with tines that hair slides on at its own friction).
     """
 
     def __init__(

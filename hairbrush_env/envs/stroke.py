@@ -154,6 +154,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       12 mm before) at the same R/P, their rest shapes turned by 2π/3 (`preset_fields`), so that a full stroke's
       force grows with curliness (Fig. 3.7) (`hairbrush_env.envs.V7_PHYSICS`). Same spaces, rewards and episode
       rules; custom wigs brush as under v6.
+    - v8 (issue #11): v7 with the `smooth_comb`, whose tines hair slides on at its own friction 0.15 (0.3 before:
+      MuJoCo takes the larger coefficient), so that a curl a tine is pulled through turns round it instead of locking
+      on it like a screw whose lead angle is below its friction angle (`hairbrush_env.envs.V8_PHYSICS`). Same spaces,
+      rewards and episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
