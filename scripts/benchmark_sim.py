@@ -295,13 +295,13 @@ def section_force_table(args: argparse.Namespace) -> None:
 
 
 def section_pull_through(args: argparse.Namespace) -> None:
-    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1–v6 physics against the
-    wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1–v6 and v8 physics against
+    the wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
     seeds = (7,) if args.quick else (7, 11)
     base = hair.PRESETS[hair.DEFAULT_WIG]
     cases = list(wig_cases(base).items())[::-1]  # flex first: the reference
     # HairBrush-vN's physics, the comb widened like the default's (v7 brushes curly as v6 does)
-    for version in ("v1", "v2", "v3", "v4", "v5", "v6"):
+    for version in ("v1", "v2", "v3", "v4", "v5", "v6", "v8"):
         physics = PHYSICS[version]
         soft = dataclasses.replace(
             get_brush(physics.brush), columns=max(get_brush(physics.brush).columns, 2 * base.n_groups + 1)
@@ -424,16 +424,16 @@ def section_levers(args: argparse.Namespace) -> None:
 
 
 def section_curliest(args: argparse.Namespace) -> None:
-    """Full pull-through stroke through tight_curl and coily under v6 and v7, side by side (v7's curls are smaller at
-    the same R/P, so they need more edges for 8 per turn)."""
+    """Full pull-through stroke through tight_curl and coily under v6, v7 and v8, side by side (v7's curls are smaller
+    at the same R/P, so they need more edges for 8 per turn; v8 brushes v7's wigs with tines of friction 0.15)."""
     seeds = (7,) if args.quick else (7, 11)
     print(
-        f"\n## The curliest presets under v6 and v7: full stroke, b_l = 1, no abort, seeds {seeds}, CPU time\n"
+        f"\n## The curliest presets under v6, v7 and v8: full stroke, b_l = 1, no abort, seeds {seeds}, CPU time\n"
     )
     rows = []
     for name in ("tight_curl", "coily"):
         cpu_v6 = None
-        for version in ("v6", "v7"):
+        for version in ("v6", "v7", "v8"):
             physics = PHYSICS[version]
             wig = physics.wig(name)
             sim = scene.BrushingSim(physics.scene_config(name))
