@@ -20,7 +20,7 @@ $(VENV)/.installed: pyproject.toml | $(BIN)/python
 # The main job: a headless closed-loop (sigmoid, thesis Algorithm 1) brushing rollout on a curly wig that writes a
 # rerun recording, a video, a JSON summary and a plot into $(OUT).
 run: $(VENV)/.installed
-	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush rollout --env HairBrush-v6 --wig curly --policy sigmoid \
+	MUJOCO_GL=$${MUJOCO_GL:-egl} $(BIN)/hairbrush rollout --env HairBrush-v8 --wig curly --policy sigmoid \
 		--episodes 1 --max-steps 30 --seed 0 --rerun $(OUT)/rollout.rrd --video $(OUT)/rollout.webm \
 		--json $(OUT)/rollout.json --plot $(OUT)/rollout.png
 
