@@ -60,7 +60,7 @@ def _helix_spec(
     spec.option.timestep = 1e-3
     spec.option.gravity = [0.0, 0.0, 0.0]
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
-    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_DISCRETE  # the hair scenes' integrator
     world = spec.worldbody
     helix = world.add_body(name="helix")
     # A hinge about the axis and nothing else: the helix can turn, not fall or tilt (the clamp of a curl's upper part).
@@ -122,9 +122,9 @@ def tine_through_helix(
     [N], for ``seconds``; return how far it went (pitches) and how far the helix turned (turns).
 
     Friction ``friction`` on both geoms (MuJoCo takes the larger), the hair's contact ``solref``/``solimp``, elliptic
-    cones, a 1 ms step: the settings of a stroke's hair contacts. The defaults are coily's curl under
-    ``HairBrush-v7`` (R 9 mm, R/P 0.8, ``tan λ`` 0.199) with a wisp's radius. A turning helix lets the tine through
-    at ``turns ≈ descent``; a locked one holds it within the contacts' softness.
+    cones, the ``discrete`` integrator at a 1 ms step: the settings of a stroke's hair contacts. The defaults are
+    coily's curl under ``HairBrush-v7`` (R 9 mm, R/P 0.8, ``tan λ`` 0.199) with a wisp's radius. A turning helix lets
+    the tine through at ``turns ≈ descent``; a locked one holds it within the contacts' softness.
     """
     if not (friction >= 0.0 and curl_radius > 0.0 and pitch > 0.0 and push > 0.0 and seconds > 0.0):
         raise ValueError(
