@@ -21,7 +21,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from ..hair.build import CONTACT_SOLIMP, CONTACT_SOLREF
+from ..hair import CONTACT_SOLIMP, CONTACT_SOLREF
 
 __all__ = ["ScrewResult", "lead_tangent", "tine_through_helix"]
 
