@@ -2,8 +2,12 @@
 high on the strands, and how hard the strands press on each other (within a pair, between pairs) — under a physics
 version (docs/detangling.md, *HairBrush-v5*: coily's second stroke).
 
-    python scripts/probe_peak_contacts.py WIG SEED [N_STROKES] [--physics v5] [--y Y]
+    python scripts/probe_peak_contacts.py WIG SEED [N_STROKES] [--physics v5] [--y Y] [--climb B_L,...]
     # e.g. coily 2 2;  coily 0 2 --y 0.01   (every stroke with the comb moved 10 mm along the curtain)
+    # coily 0 1 --physics v8 --climb 0.33,0.5,0.67,0.83   (the full stroke after a climb from the free ends)
+
+``--climb`` brushes those strokes (no abort) first and prints each pair's entwined link above the climb's highest
+start before the analysed full strokes (docs/detangling.md, *Why coily's sigmoid runs into the stroke cap*).
 """
 
 import argparse
@@ -22,6 +26,9 @@ parser.add_argument("seed", type=int)
 parser.add_argument("n_strokes", type=int, nargs="?", default=2)
 parser.add_argument("--physics", choices=list(PHYSICS), default="v5")
 parser.add_argument("--y", type=float, default=0.0, help="comb offset along the curtain [m] for every stroke")
+parser.add_argument(
+    "--climb", default="", help="comma-separated b_l of strokes brushed before the analysed ones"
+)
 args = parser.parse_args()
 physics, wig, seed, n, y = get_physics(args.physics), args.wig, args.seed, args.n_strokes, args.y
 sim = BrushingSim(physics.scene_config(wig))
@@ -91,6 +98,14 @@ def pair_geometry(s: BrushingSim) -> None:
 
 
 np.set_printoptions(precision=2, suppress=True, linewidth=220)
+if args.climb:
+    climb = [float(b) for b in args.climb.split(",")]
+    top_depth = sim.hair_top - sim.start_height(max(climb))
+    for b_l in climb:
+        r = sim.stroke(b_l, abort_force=None, y=y)
+        print(f"climb stroke b_l {b_l:.2f}: F_max {r.max_force:.2f} N; Σ|Lk| after {sim.entanglement():.2f}")
+    band = sim.entanglement_meter.pair_link_by_depth(sim.data, np.array([0.0, top_depth, 1.0]))[:, 0]
+    print(f"   pair link above {1000 * top_depth:.0f} mm (signed)", band, f" Σ|.| {np.abs(band).sum():.2f}")
 for k in range(1, n + 1):
     print(f"before stroke {k}:")
     pair_geometry(sim)
