@@ -1,0 +1,52 @@
+"""One entwined pair of each curled preset, alone with three tines (:mod:`hairbrush_env.studies.pair_on_comb`):
+a lone curl held by its root, the pair's fresh full stroke, and a climb from the free ends followed by two full
+strokes (docs/detangling.md, *What carries coily's first stroke from the roots*).
+
+    python scripts/pair_on_comb_table.py [--physics v8] [--wigs loose_curl,curly,tight_curl,coily]
+
+A stroke of b_l puts the comb in 8 mm + (1 − b_l)(hanging length − 8 mm) below the roots (b_l = 1: 8 mm, as the
+scene's full stroke). Forces are 10 Hz means [N]; Lk is the pair's |Lk| after the stroke.
+"""
+
+import argparse
+import time
+
+from hairbrush_env.physics import PHYSICS, get_physics
+from hairbrush_env.studies.pair_on_comb import PairOnComb, peel_force
+
+TOP = 0.008
+CLIMB = (0.33, 0.5, 0.67, 0.83)
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("--physics", choices=list(PHYSICS), default="v8")
+parser.add_argument("--wigs", default="loose_curl,curly,tight_curl,coily")
+args = parser.parse_args()
+
+
+def depth(pair: PairOnComb, b_l: float) -> float:
+    return TOP + (1.0 - b_l) * (pair.hanging_length() - TOP)
+
+
+print(
+    f"| wig ({args.physics}) | E I κ₀² / 2 [N] | lone curl, full [N] | pair, fresh full [N] (Lk before → after) "
+    f"| climb b_l {' / '.join(map(str, CLIMB))} [N] (Lk after) | full, full after the climb [N] (Lk after) | CPU s |"
+)
+print("|---|---:|---:|---|---|---|---:|")
+for name in args.wigs.split(","):
+    t0 = time.process_time()
+    wig = get_physics(args.physics).scene_config(name).wig
+    peel = peel_force(wig.curl_radius, wig.pitch, young=wig.young_modulus, strand_radius=wig.strand_radius)
+    lone = PairOnComb(name, physics=args.physics, lone=True).stroke(TOP).max_force
+    pair = PairOnComb(name, physics=args.physics)
+    lk0 = pair.link()
+    fresh = pair.stroke(TOP)
+    pair = PairOnComb(name, physics=args.physics)
+    climb = [pair.stroke(depth(pair, b)) for b in CLIMB]
+    after = [pair.stroke(TOP) for _ in range(2)]
+    print(
+        f"| {name} | {peel:.3f} | {lone:.3f} | {fresh.max_force:.2f} ({lk0:.2f} → {fresh.link_after:.2f}) | "
+        f"{' / '.join(f'{s.max_force:.2f}' for s in climb)} ({climb[-1].link_after:.2f}) | "
+        f"{after[0].max_force:.2f}, {after[1].max_force:.2f} ({after[1].link_after:.2f}) | "
+        f"{time.process_time() - t0:.0f} |",
+        flush=True,
+    )
