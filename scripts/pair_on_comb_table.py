@@ -2,14 +2,17 @@
 a lone curl held by its root, the pair's fresh full stroke, and a climb from the free ends followed by two full
 strokes (docs/detangling.md, *What carries coily's first stroke from the roots*).
 
-    python scripts/pair_on_comb_table.py [--physics v8] [--wigs loose_curl,curly,tight_curl,coily]
+    python scripts/pair_on_comb_table.py [--physics v8] [--wigs loose_curl,curly,tight_curl,coily] [--seeds 0,1,2]
 
 A stroke of b_l puts the comb in 8 mm + (1 − b_l)(hanging length − 8 mm) below the roots (b_l = 1: 8 mm, as the
-scene's full stroke). Forces are 10 Hz means [N]; Lk is the pair's |Lk| after the stroke.
+scene's full stroke). Each pair is shaken as the wig's pre-brushed preparation with each seed; every cell is the
+mean over the seeds. Forces are 10 Hz means [N]; Lk is the pair's |Lk| after the stroke.
 """
 
 import argparse
 import time
+
+import numpy as np
 
 from hairbrush_env.physics import PHYSICS, get_physics
 from hairbrush_env.studies.pair_on_comb import PairOnComb, peel_force
@@ -20,7 +23,9 @@ CLIMB = (0.33, 0.5, 0.67, 0.83)
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("--physics", choices=list(PHYSICS), default="v8")
 parser.add_argument("--wigs", default="loose_curl,curly,tight_curl,coily")
+parser.add_argument("--seeds", default="0,1,2", help="pre-brushed preparation seeds")
 args = parser.parse_args()
+seeds = [int(x) for x in args.seeds.split(",")]
 
 
 def depth(pair: PairOnComb, b_l: float) -> float:
@@ -36,17 +41,21 @@ for name in args.wigs.split(","):
     t0 = time.process_time()
     wig = get_physics(args.physics).scene_config(name).wig
     peel = peel_force(wig.curl_radius, wig.pitch, young=wig.young_modulus, strand_radius=wig.strand_radius)
-    lone = PairOnComb(name, physics=args.physics, lone=True).stroke(TOP).max_force
-    pair = PairOnComb(name, physics=args.physics)
-    lk0 = pair.link()
-    fresh = pair.stroke(TOP)
-    pair = PairOnComb(name, physics=args.physics)
-    climb = [pair.stroke(depth(pair, b)) for b in CLIMB]
-    after = [pair.stroke(TOP) for _ in range(2)]
+    rows = []
+    for seed in seeds:
+        lone = PairOnComb(name, physics=args.physics, lone=True, shake_seed=seed).stroke(TOP).max_force
+        pair = PairOnComb(name, physics=args.physics, shake_seed=seed)
+        lk0 = pair.link()
+        fresh = pair.stroke(TOP)
+        pair = PairOnComb(name, physics=args.physics, shake_seed=seed)
+        climb = [pair.stroke(depth(pair, b)) for b in CLIMB]
+        after = [pair.stroke(TOP) for _ in range(2)]
+        rows.append([lone, fresh.max_force, lk0, fresh.link_after, *(c.max_force for c in climb),
+                     climb[-1].link_after, after[0].max_force, after[1].max_force, after[1].link_after])  # fmt: skip
+    m = np.mean(rows, axis=0)
     print(
-        f"| {name} | {peel:.3f} | {lone:.3f} | {fresh.max_force:.2f} ({lk0:.2f} → {fresh.link_after:.2f}) | "
-        f"{' / '.join(f'{s.max_force:.2f}' for s in climb)} ({climb[-1].link_after:.2f}) | "
-        f"{after[0].max_force:.2f}, {after[1].max_force:.2f} ({after[1].link_after:.2f}) | "
+        f"| {name} | {peel:.3f} | {m[0]:.3f} | {m[1]:.2f} ({m[2]:.2f} → {m[3]:.2f}) | "
+        f"{' / '.join(f'{x:.2f}' for x in m[4:8])} ({m[8]:.2f}) | {m[9]:.2f}, {m[10]:.2f} ({m[11]:.2f}) | "
         f"{time.process_time() - t0:.0f} |",
         flush=True,
     )

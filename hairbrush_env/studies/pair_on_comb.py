@@ -25,6 +25,7 @@ import numpy as np
 from .. import collision
 from ..hair import CONTACT_SOLIMP, CONTACT_SOLREF, WigConfig, add_wig
 from ..hair.drag import StrandDrag
+from ..hair.shaking import shake
 from ..physics import get_physics
 from ..rods import RodView, bending_stiffness, configure_rod_options
 from ..scene_build import TOOL_CONTACT_MARGIN
@@ -77,10 +78,13 @@ class PairOnComb:
         Make the second strand touch nothing (one curl held by its root, alone with the comb).
     settle : float
         Seconds the pair hangs under gravity, the comb out of the way, before the first stroke.
+    shake_seed : int or None
+        Before that, shake the pair as the wig's pre-brushed preparation does with this seed
+        (:func:`~hairbrush_env.hair.shaking.shake`); ``None``: start from the pair as built.
     """
 
     def __init__(self, wig: str | WigConfig = "coily", *, physics: str = "v8", lone: bool = False,
-                 settle: float = 1.0) -> None:  # fmt: skip
+                 settle: float = 1.0, shake_seed: int | None = None) -> None:  # fmt: skip
         if not (math.isfinite(settle) and settle >= 0.0):
             raise ValueError(f"PairOnComb: settle must be a finite number >= 0 [s], got {settle!r}")
         version = get_physics(physics)
@@ -124,6 +128,8 @@ class PairOnComb:
         bodies = np.concatenate([v.bodies for v in self._views])
         self._drag = StrandDrag(self.model, bodies, self.wig.drag_density) if self.wig.drag_density else None
         self._aside()
+        if shake_seed is not None:
+            shake(self.model, self.data, self.wig, int(shake_seed), strand_bodies=bodies)
         self._run(settle)
 
     def _aside(self) -> None:
@@ -164,20 +170,24 @@ class PairOnComb:
 
     def stroke(self, start_depth: float, *, rest: float = 0.5) -> PairStroke:
         """Insert the comb along its tines ``start_depth`` [m] below the roots at the version's approach speed, pull
-        it down at its stroke speed until it is 3 cm below the lowest strand point, take it out and let the pair
-        hang ``rest`` seconds. The force is recorded during the pull."""
+        it down at its stroke speed until it is 1 cm below the lowest strand point (the curls it drags down
+        included), take it out and let the pair hang ``rest`` seconds. The force is recorded during the pull."""
         if not (math.isfinite(start_depth) and start_depth > 0.0):
             raise ValueError(f"PairOnComb.stroke: start_depth must be > 0 [m], got {start_depth!r}")
         dt = self.model.opt.timestep
         window = max(1, round(LOAD_CELL_PERIOD / dt))
-        end = self.hanging_length() + 0.03
+        floor = self.wig.length + 0.03  # below a fully straightened strand's end, as the scene's pull floor
         self.data.mocap_pos[0] = [self._clear_x, 0.0, -start_depth]
         while self.data.mocap_pos[0, 0] < 0.0:
             self.data.mocap_pos[0, 0] = min(0.0, self.data.mocap_pos[0, 0] + self.approach_speed * dt)
             self._step()
         f6 = np.zeros(6)
         depths, forces, acc, k = [], [], 0.0, 0
-        while -self.data.mocap_pos[0, 2] < end:
+        while -self.data.mocap_pos[0, 2] < floor:
+            # done once the comb is 1 cm below every strand point (the scene pulls on to its floor; nothing is left
+            # on the tines by then)
+            if k % window == 0 and -self.data.mocap_pos[0, 2] > self.hanging_length() + 0.01:
+                break
             acc += self._tine_force(f6)
             k += 1
             if k % window == 0:
