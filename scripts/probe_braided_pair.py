@@ -8,7 +8,8 @@ stroke from the roots*).
 The centerline is WIG's strand (its root run, then its curl); the two wisps lie r + 0.5 mm either side of it (their
 contact margins apart), turned about it once per PLY_PITCH [m] of arc (1000: not twisted, the plies curl side by
 side; negative: the other sense), each stress-free in that shape, with the wig's material, contacts and drag. The
-comb is :mod:`hairbrush_env.studies.pair_on_comb`'s: three middle tines put in along their length and pulled down;
+comb is :mod:`hairbrush_env.studies.pair_on_comb`'s: three middle tines put in along their length and pulled down
+until they are 1 cm below every strand point;
 a stroke of b_l starts 8 mm + (1 − b_l)(hanging length − 8 mm) below the roots. Prints each stroke's largest 10 Hz
 force and the pair's |Lk| after it.
 """
@@ -110,13 +111,15 @@ def hanging_length() -> float:
 
 
 def stroke(depth: float) -> float:
-    end, f6, forces, acc = hanging_length() + 0.03, np.zeros(6), [], 0.0
+    floor, f6, forces, acc = wig.length + 0.03, np.zeros(6), [], 0.0
     data.mocap_pos[0] = [-(half + wig.curl_radius + 0.01), 0.0, -depth]
     while data.mocap_pos[0, 0] < 0.0:
         data.mocap_pos[0, 0] = min(0.0, data.mocap_pos[0, 0] + scene.approach_speed * dt)
         step()
     k = 0
-    while -data.mocap_pos[0, 2] < end:
+    while -data.mocap_pos[0, 2] < floor:
+        if k % 100 == 0 and -data.mocap_pos[0, 2] > hanging_length() + 0.01:
+            break  # 1 cm below every strand point, the curls it dragged down included
         for i in range(data.ncon):
             c = data.contact[i]
             if c.geom1 in tines or c.geom2 in tines:
