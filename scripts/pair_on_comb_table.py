@@ -3,6 +3,7 @@ a lone curl held by its root, the pair's fresh full stroke, and a climb from the
 strokes (docs/detangling.md, *What carries coily's first stroke from the roots*).
 
     python scripts/pair_on_comb_table.py [--physics v8] [--wigs loose_curl,curly,tight_curl,coily] [--seeds 0,1,2]
+    python scripts/pair_on_comb_table.py --speeds 0.05,0.2 --wigs curly,coily   # Fig. 3.8 for one pair
 
 A stroke of b_l puts the comb in 8 mm + (1 − b_l)(hanging length − 8 mm) below the roots (b_l = 1: 8 mm, as the
 scene's full stroke). Each pair is shaken as the wig's pre-brushed preparation with each seed; every cell is the
@@ -24,6 +25,9 @@ parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("--physics", choices=list(PHYSICS), default="v8")
 parser.add_argument("--wigs", default="loose_curl,curly,tight_curl,coily")
 parser.add_argument("--seeds", default="0,1,2", help="pre-brushed preparation seeds")
+parser.add_argument(
+    "--speeds", default="", help="instead: the full and b_l 0.67 strokes at these pull speeds [m/s]"
+)
 args = parser.parse_args()
 seeds = [int(x) for x in args.seeds.split(",")]
 
@@ -31,6 +35,27 @@ seeds = [int(x) for x in args.seeds.split(",")]
 def depth(pair: PairOnComb, b_l: float) -> float:
     return TOP + (1.0 - b_l) * (pair.hanging_length() - TOP)
 
+
+if args.speeds:
+    speeds = [float(v) for v in args.speeds.split(",")]
+    print(
+        f"| wig ({args.physics}) | b_l | "
+        + " | ".join(f"{v:g} m/s [N]" for v in speeds)
+        + " | last / first |"
+    )
+    print("|---|---:|" + "---:|" * len(speeds) + "---:|")
+    for name in args.wigs.split(","):
+        for b_l in (1.0, 0.67):
+            means = []
+            for v in speeds:
+                forces = []
+                for seed in seeds:
+                    pair = PairOnComb(name, physics=args.physics, shake_seed=seed, stroke_speed=v)
+                    forces.append(pair.stroke(depth(pair, b_l)).max_force)
+                means.append(float(np.mean(forces)))
+            cells = " | ".join(f"{f:.3f}" for f in means)
+            print(f"| {name} | {b_l:g} | {cells} | {100 * (means[-1] / means[0] - 1):+.0f} % |", flush=True)
+    raise SystemExit(0)
 
 print(
     f"| wig ({args.physics}) | E I κ₀² / 2 [N] | lone curl, full [N] | pair, fresh full [N] (Lk before → after) "

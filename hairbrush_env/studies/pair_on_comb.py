@@ -81,10 +81,13 @@ class PairOnComb:
     shake_seed : int or None
         Before that, shake the pair as the wig's pre-brushed preparation does with this seed
         (:func:`~hairbrush_env.hair.shaking.shake`); ``None``: start from the pair as built.
+    stroke_speed : float or None
+        Pull speed [m/s]; ``None``: the version's (0.1 m/s).
     """
 
     def __init__(self, wig: str | WigConfig = "coily", *, physics: str = "v8", lone: bool = False,
-                 settle: float = 1.0, shake_seed: int | None = None) -> None:  # fmt: skip
+                 settle: float = 1.0, shake_seed: int | None = None,
+                 stroke_speed: float | None = None) -> None:  # fmt: skip
         if not (math.isfinite(settle) and settle >= 0.0):
             raise ValueError(f"PairOnComb: settle must be a finite number >= 0 [s], got {settle!r}")
         version = get_physics(physics)
@@ -93,7 +96,9 @@ class PairOnComb:
         if self.wig.curliness <= 0.0:
             raise ValueError(f"PairOnComb: wig {self.wig.name!r} is straight; the study needs a curled wig")
         brush = scene.brush
-        self.speed = float(scene.stroke_speed)
+        self.speed = float(scene.stroke_speed if stroke_speed is None else stroke_speed)
+        if not (math.isfinite(self.speed) and self.speed > 0.0):
+            raise ValueError(f"PairOnComb: stroke_speed must be > 0 [m/s], got {stroke_speed!r}")
         self.approach_speed = float(scene.approach_speed)
         # Inserted along the tines (x) from where they clear the pair's coils, as the arm puts the comb in.
         self._clear_x = -(0.5 * brush.tine_length + self.wig.curl_radius + 0.01)

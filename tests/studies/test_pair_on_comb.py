@@ -55,3 +55,5 @@ def test_bad_input_names_the_argument():
         PairOnComb("straight", settle=0.0)
     with pytest.raises(ValueError, match="start_depth"):
         PairOnComb("coily", settle=0.0).stroke(0.0)
+    with pytest.raises(ValueError, match="stroke_speed"):
+        PairOnComb("coily", settle=0.0, stroke_speed=-0.1)
