@@ -4,11 +4,14 @@
         [--physics vN]
     # e.g. curly 1 0.67 0.05,0.2 3 '{"damping": 0.0632}' '{"max_step_travel": 0.0008}'
     # or   curly 3 1 0.05,0.2 3 '{}' '{}' --physics v5      (HairBrush-v5's wig and brush, a third of the mass scale)
+    # or   curly 10 1 0.05,0.2 3 '{}' '{"brush": {"hinged": false}}' --physics v8   (the version's comb, rigid tines)
 
 One stroke per (seed, speed) from the pre-brushed wig, no abort; prints the max force per seed and the mean per speed
-(docs/detangling.md, *Correction*: is the mass-scaled stroke still quasi-static?).
+(docs/detangling.md, *Correction*: is the mass-scaled stroke still quasi-static?). A "brush" dict in
+SCENE_FIELDS_JSON holds BrushConfig fields over the version's comb.
 """
 
+import dataclasses
 import json
 import os
 import sys
@@ -16,6 +19,7 @@ import sys
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 import numpy as np
 
+from hairbrush_env.brush import get_brush
 from hairbrush_env.physics import get_physics
 from hairbrush_env.scene import BrushingSim, SceneConfig
 
@@ -30,6 +34,8 @@ n_seeds = int(sys.argv[5]) if len(sys.argv) > 5 else 3
 extra = json.loads(sys.argv[6]) if len(sys.argv) > 6 else {}
 scene_fields = json.loads(sys.argv[7]) if len(sys.argv) > 7 else {}
 w = physics.wig(wig).replace(mass_scale=scale, **extra)  # the extra fields win over the version's
+if isinstance(scene_fields.get("brush"), dict):
+    scene_fields["brush"] = dataclasses.replace(get_brush(physics.brush), **scene_fields["brush"])
 scene_fields.setdefault("brush", physics.brush)
 sim = BrushingSim(SceneConfig(wig=w, **scene_fields))
 for speed in speeds:
