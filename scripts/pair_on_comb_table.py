@@ -5,9 +5,9 @@ strokes (docs/detangling.md, *What carries coily's first stroke from the roots*)
     python scripts/pair_on_comb_table.py [--physics v8] [--wigs loose_curl,curly,tight_curl,coily] [--seeds 0,1,2]
     python scripts/pair_on_comb_table.py --speeds 0.05,0.2 --wigs curly,coily   # Fig. 3.8 for one pair
 
-A stroke of b_l puts the comb in 8 mm + (1 − b_l)(hanging length − 8 mm) below the roots (b_l = 1: 8 mm, as the
-scene's full stroke). Each pair is shaken as the wig's pre-brushed preparation with each seed; every cell is the
-mean over the seeds. Forces are 10 Hz means [N]; Lk is the pair's |Lk| after the stroke.
+A stroke of b_l starts at ``PairOnComb.start_depth(b_l)``: 8 mm + (1 − b_l)(hanging length − 8 mm) below the roots
+(b_l = 1: 8 mm, as the scene's full stroke). Each pair is shaken as the wig's pre-brushed preparation with each seed;
+every cell is the mean over the seeds. Forces are 10 Hz means [N]; Lk is the pair's |Lk| after the stroke.
 """
 
 import argparse
@@ -18,7 +18,6 @@ import numpy as np
 from hairbrush_env.physics import PHYSICS, get_physics
 from hairbrush_env.studies.pair_on_comb import PairOnComb, peel_force
 
-TOP = 0.008
 CLIMB = (0.33, 0.5, 0.67, 0.83)
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -30,10 +29,6 @@ parser.add_argument(
 )
 args = parser.parse_args()
 seeds = [int(x) for x in args.seeds.split(",")]
-
-
-def depth(pair: PairOnComb, b_l: float) -> float:
-    return TOP + (1.0 - b_l) * (pair.hanging_length() - TOP)
 
 
 if args.speeds:
@@ -51,7 +46,7 @@ if args.speeds:
                 forces = []
                 for seed in seeds:
                     pair = PairOnComb(name, physics=args.physics, shake_seed=seed, stroke_speed=v)
-                    forces.append(pair.stroke(depth(pair, b_l)).max_force)
+                    forces.append(pair.stroke(pair.start_depth(b_l)).max_force)
                 means.append(float(np.mean(forces)))
             cells = " | ".join(f"{f:.3f}" for f in means)
             print(f"| {name} | {b_l:g} | {cells} | {100 * (means[-1] / means[0] - 1):+.0f} % |", flush=True)
@@ -68,13 +63,17 @@ for name in args.wigs.split(","):
     peel = peel_force(wig.curl_radius, wig.pitch, young=wig.young_modulus, strand_radius=wig.strand_radius)
     rows = []
     for seed in seeds:
-        lone = PairOnComb(name, physics=args.physics, lone=True, shake_seed=seed).stroke(TOP).max_force
+        lone = (
+            PairOnComb(name, physics=args.physics, lone=True, shake_seed=seed)
+            .stroke(PairOnComb.TOP)
+            .max_force
+        )
         pair = PairOnComb(name, physics=args.physics, shake_seed=seed)
         lk0 = pair.link()
-        fresh = pair.stroke(TOP)
+        fresh = pair.stroke(PairOnComb.TOP)
         pair = PairOnComb(name, physics=args.physics, shake_seed=seed)
-        climb = [pair.stroke(depth(pair, b)) for b in CLIMB]
-        after = [pair.stroke(TOP) for _ in range(2)]
+        climb = [pair.stroke(pair.start_depth(b)) for b in CLIMB]
+        after = [pair.stroke(PairOnComb.TOP) for _ in range(2)]
         rows.append([lone, fresh.max_force, lk0, fresh.link_after, *(c.max_force for c in climb),
                      climb[-1].link_after, after[0].max_force, after[1].max_force, after[1].link_after])  # fmt: skip
     m = np.mean(rows, axis=0)

@@ -21,7 +21,6 @@ parser.add_argument("wig")
 parser.add_argument("--seeds", default="0,1,2")
 parser.add_argument("--physics", choices=list(PHYSICS), default="v8")
 args = parser.parse_args()
-TOP = 0.008
 
 
 def quarters(pair: PairOnComb, sign: float) -> str:
@@ -35,14 +34,16 @@ def quarters(pair: PairOnComb, sign: float) -> str:
 for seed in (int(s) for s in args.seeds.split(",")):
     pair = PairOnComb(args.wig, physics=args.physics, shake_seed=seed)
     sign = float(np.sign(linking_number(*pair.curves(), closed=False)))
-    hang = pair.hanging_length()
+    depths = [
+        pair.start_depth(b_l) for b_l in (0.33, 0.5, 0.67, 0.83)
+    ]  # from the hanging length before the climb
     out = [f"{args.wig} seed {seed}: start {quarters(pair, sign)}"]
-    for b_l in (0.33, 0.5, 0.67, 0.83):
-        pair.stroke(TOP + (1.0 - b_l) * (hang - TOP))
+    for depth in depths:
+        pair.stroke(depth)
     out.append(f"after the climb {quarters(pair, sign)}")
-    full = pair.stroke(TOP)
+    full = pair.stroke(PairOnComb.TOP)
     out.append(f"full {full.max_force:.2f} N → {quarters(pair, sign)}")
     fresh_pair = PairOnComb(args.wig, physics=args.physics, shake_seed=seed)
-    fresh = fresh_pair.stroke(TOP)
+    fresh = fresh_pair.stroke(PairOnComb.TOP)
     out.append(f"| fresh full {fresh.max_force:.2f} N → {quarters(fresh_pair, sign)}")
     print("  ".join(out), flush=True)

@@ -92,7 +92,7 @@ curves), :mod:`.build` (:func:`add_wig`, contact parameters), :mod:`.entanglemen
 re-exported here: use ``hair.WigConfig``, ``from hairbrush_env.hair import get_wig``.
 """
 
-from .build import CONTACT_MARGIN, CONTACT_SOLIMP, CONTACT_SOLREF, HAIR_GEOM_GROUP, add_wig
+from .build import CONTACT_MARGIN, CONTACT_SOLIMP, CONTACT_SOLREF, HAIR_GEOM_GROUP, add_wig, strand_rod
 from .config import (
     DEFAULT_WIG,
     HAIR_RGBA,
@@ -152,6 +152,7 @@ __all__ = [
     "set_state",
     "shake",
     "shake_acceleration",
+    "strand_rod",
     "wave1_wig",
     "wig_layout",
     "wig_names",

@@ -11,7 +11,7 @@ from .. import collision, rods
 from .config import WigConfig, get_wig
 from .layout import WigLayout, wig_layout
 
-__all__ = ["CONTACT_MARGIN", "CONTACT_SOLIMP", "CONTACT_SOLREF", "HAIR_GEOM_GROUP", "add_wig"]
+__all__ = ["CONTACT_MARGIN", "CONTACT_SOLIMP", "CONTACT_SOLREF", "HAIR_GEOM_GROUP", "add_wig", "strand_rod"]
 
 HAIR_GEOM_GROUP = 1
 """Visualisation group of the strands (visible by default; the scene's parts use groups 2–5)."""
@@ -65,34 +65,46 @@ def add_wig(
     cfg = get_wig(wig)
     layout = wig_layout(cfg, prefix=prefix)
     off = np.asarray(root_offset, dtype=float).reshape(3)
-    contype, conaffinity = collision.HAIR_GEOM_SELF_COLLIDING if hair_hair else collision.HAIR_GEOM
     for name, curve in zip(layout.names, layout.curves, strict=True):
-        rods.add_rod(
-            spec,
-            rods.RodSpec(
-                name=name,
-                points=curve + off,
-                radius=cfg.strand_radius,
-                young=cfg.young_modulus,
-                density=cfg.density,
-                mass_scale=cfg.mass_scale if cfg.rod_kind == "chain" else 1.0,
-                damping=cfg.damping,
-                quadratic_damping=cfg.quadratic_damping,
-                friction=cfg.friction,
-                rgba=cfg.rgba,
-                contype=contype,
-                conaffinity=conaffinity,
-                condim=3,
-                contact_solref=CONTACT_SOLREF,
-                contact_solimp=CONTACT_SOLIMP,
-                margin=CONTACT_MARGIN,
-                group=HAIR_GEOM_GROUP,
-                kind=cfg.rod_kind,
-                selfcollide=cfg.self_collision,
-                # straight strands have no curl whose axis could move: turning them would only twist the root
-                root_rest_turn=float(cfg.rest_splay) if cfg.curliness > 0 else 0.0,
-                root_twist_first=cfg.root_twist_first,  # WigConfig allows it on chains only
-            ),
-            parent=parent_body,
-        )
+        rods.add_rod(spec, strand_rod(cfg, name, curve + off, hair_hair=hair_hair), parent=parent_body)
     return layout
+
+
+def strand_rod(
+    cfg: WigConfig,
+    name: str,
+    points: np.ndarray,
+    *,
+    hair_hair: bool = True,
+    root_rest_turn: float | None = None,
+) -> rods.RodSpec:
+    """One strand of ``cfg`` along ``points`` (in its parent's frame): the wig's material, damping, mass scaling,
+    contacts and collision bits. ``root_rest_turn``: the turn of its stress-free shape about the root (``None``: the
+    wig's ``rest_splay`` for curled strands, 0 for straight ones; 0: stress-free as built)."""
+    if root_rest_turn is None:
+        # straight strands have no curl whose axis could move: turning them would only twist the root
+        root_rest_turn = float(cfg.rest_splay) if cfg.curliness > 0 else 0.0
+    contype, conaffinity = collision.HAIR_GEOM_SELF_COLLIDING if hair_hair else collision.HAIR_GEOM
+    return rods.RodSpec(
+        name=name,
+        points=points,
+        radius=cfg.strand_radius,
+        young=cfg.young_modulus,
+        density=cfg.density,
+        mass_scale=cfg.mass_scale if cfg.rod_kind == "chain" else 1.0,
+        damping=cfg.damping,
+        quadratic_damping=cfg.quadratic_damping,
+        friction=cfg.friction,
+        rgba=cfg.rgba,
+        contype=contype,
+        conaffinity=conaffinity,
+        condim=3,
+        contact_solref=CONTACT_SOLREF,
+        contact_solimp=CONTACT_SOLIMP,
+        margin=CONTACT_MARGIN,
+        group=HAIR_GEOM_GROUP,
+        kind=cfg.rod_kind,
+        selfcollide=cfg.self_collision,
+        root_rest_turn=float(root_rest_turn),
+        root_twist_first=cfg.root_twist_first,  # WigConfig allows it on chains only
+    )

@@ -7,7 +7,8 @@ with ``n_strands = 2``: the group axis under the middle tine, the roots across t
 shapes, contacts, damping, mass scaling and air drag) and a rigid comb of the version's three middle tines, moved
 kinematically, so that strokes from any depth below the roots, one after another, cost about a second each instead
 of a minute for the whole wig. ``lone=True`` makes the second strand a ghost that touches nothing: what one curl held
-by its root costs a tine by itself.
+by its root costs a tine by itself; ``curves`` replaces the wig's pair by any two strands (e.g. a braided pair,
+``scripts/probe_braided_pair.py``) of the wig's material.
 
 For scale, :func:`peel_force` is what drawing a curl straight over a tine would cost without friction, its bending
 energy per length ``E I κ₀² / 2`` (``κ₀ = R / (R² + (P / 2π)²)``): the force of a curl that could neither turn round
@@ -17,17 +18,18 @@ the tine nor swing off it.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import mujoco
 import numpy as np
 
 from .. import collision
-from ..hair import CONTACT_SOLIMP, CONTACT_SOLREF, WigConfig, add_wig
+from ..hair import CONTACT_SOLIMP, CONTACT_SOLREF, WigConfig, add_wig, strand_rod
 from ..hair.drag import StrandDrag
 from ..hair.shaking import shake
 from ..physics import get_physics
-from ..rods import RodView, bending_stiffness, configure_rod_options
+from ..rods import RodView, add_rod, bending_stiffness, configure_rod_options
 from ..scene_build import TOOL_CONTACT_MARGIN
 from ..topology import linking_number
 
@@ -83,11 +85,18 @@ class PairOnComb:
         (:func:`~hairbrush_env.hair.shaking.shake`); ``None``: start from the pair as built.
     stroke_speed : float or None
         Pull speed [m/s]; ``None``: the version's (0.1 m/s).
+    curves : sequence of two (n, 3) arrays, optional
+        Build these two strands (roots at z = 0, the comb's middle tine along x through the origin) with the wig's
+        material, contacts and collision bits, stress-free as given, instead of the wig's own pair.
     """
+
+    #: Depth of a full stroke's start below the roots [m] (the scene's tines go in 8 mm down at b_l = 1).
+    TOP = 0.008
 
     def __init__(self, wig: str | WigConfig = "coily", *, physics: str = "v8", lone: bool = False,
                  settle: float = 1.0, shake_seed: int | None = None,
-                 stroke_speed: float | None = None) -> None:  # fmt: skip
+                 stroke_speed: float | None = None,
+                 curves: Sequence[np.ndarray] | None = None) -> None:  # fmt: skip
         if not (math.isfinite(settle) and settle >= 0.0):
             raise ValueError(f"PairOnComb: settle must be a finite number >= 0 [s], got {settle!r}")
         version = get_physics(physics)
@@ -106,7 +115,18 @@ class PairOnComb:
         configure_rod_options(spec, timestep=float(scene.contact_timestep), kind=self.wig.rod_kind)
         spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
         scalp = spec.worldbody.add_body(name="scalp")
-        layout = add_wig(spec, self.wig, parent_body=scalp)
+        if curves is None:
+            names = add_wig(spec, self.wig, parent_body=scalp).names
+        else:
+            if len(curves) != 2:
+                raise ValueError(f"PairOnComb: curves must be two strands, got {len(curves)}")
+            names = ("strand0", "strand1")
+            for name, points in zip(names, curves, strict=True):
+                add_rod(
+                    spec,
+                    strand_rod(self.wig, name, np.asarray(points, float), root_rest_turn=0.0),
+                    parent=scalp,
+                )
         comb = spec.worldbody.add_body(name="comb", mocap=True)
         half = 0.5 * brush.tine_length
         for k, y in enumerate((-brush.column_pitch, 0.0, brush.column_pitch)):
@@ -124,7 +144,7 @@ class PairOnComb:
             geom.condim = 3
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
-        self._views = [RodView(self.model, name) for name in layout.names]
+        self._views = [RodView(self.model, name) for name in names]
         self._tines = frozenset(self.model.geom(f"tine{k}").id for k in range(3))
         if lone:
             ghost = np.isin(self.model.geom_bodyid, self._views[1].bodies)
@@ -161,6 +181,13 @@ class PairOnComb:
     def hanging_length(self) -> float:
         """Depth of the lowest vertex below the roots [m]."""
         return -min(float(c[:, 2].min()) for c in self.curves())
+
+    def start_depth(self, b_l: float) -> float:
+        """Where a stroke of normalized length ``b_l`` puts the comb in [m below the roots]: :attr:`TOP` at
+        ``b_l = 1``, the lowest strand point at 0, linear between (as the scene's start heights)."""
+        if not (math.isfinite(b_l) and 0.0 < b_l <= 1.0):
+            raise ValueError(f"PairOnComb.start_depth: b_l must be in (0, 1], got {b_l!r}")
+        return self.TOP + (1.0 - b_l) * (self.hanging_length() - self.TOP)
 
     def _tine_force(self, f6: np.ndarray) -> float:
         fz = 0.0

@@ -19,10 +19,10 @@ def test_curl_curvature_and_peel_force():
 
 @pytest.fixture(scope="module")
 def coily_lone_and_pair():
-    lone = PairOnComb("coily", lone=True).stroke(0.008)
+    lone = PairOnComb("coily", lone=True).stroke(PairOnComb.TOP)
     pair = PairOnComb("coily")
     link0 = pair.link()
-    fresh = pair.stroke(0.008)
+    fresh = pair.stroke(PairOnComb.TOP)
     return lone, link0, fresh
 
 
@@ -43,8 +43,10 @@ def test_the_second_strand_carries_a_pairs_force(coily_lone_and_pair):
 def test_shorter_strokes_read_less_than_the_full_one():
     pair = PairOnComb("coily")
     hang = pair.hanging_length()
-    short = [pair.stroke(0.008 + (1.0 - b) * (hang - 0.008)).max_force for b in (0.33, 0.67)]
-    full = pair.stroke(0.008).max_force
+    assert pair.start_depth(1.0) == pytest.approx(PairOnComb.TOP)
+    assert pair.start_depth(0.5) == pytest.approx(0.5 * (PairOnComb.TOP + hang))
+    short = [pair.stroke(pair.start_depth(b)).max_force for b in (0.33, 0.67)]
+    full = pair.stroke(PairOnComb.TOP).max_force
     assert max(short) < full
 
 
@@ -57,3 +59,7 @@ def test_bad_input_names_the_argument():
         PairOnComb("coily", settle=0.0).stroke(0.0)
     with pytest.raises(ValueError, match="stroke_speed"):
         PairOnComb("coily", settle=0.0, stroke_speed=-0.1)
+    with pytest.raises(ValueError, match="curves"):
+        PairOnComb("coily", settle=0.0, curves=[PairOnComb("coily", settle=0.0).curves()[0]])
+    with pytest.raises(ValueError, match="b_l"):
+        PairOnComb("coily", settle=0.0).start_depth(0.0)
