@@ -178,7 +178,9 @@ class BrushingSim:
         # Drag of the medium on the strands while they are brushed (WigConfig.drag_density; not in the preparation,
         # so the pre-brushed wigs are those without it).
         self._drag = (
-            StrandDrag(self.model, self.hair_bodies, self.wig.drag_density) if self.wig.drag_density else None
+            StrandDrag(self.model, self.hair_bodies, self.wig.drag_density, self.wig.drag_free_speed)
+            if self.wig.drag_density
+            else None
         )
         # Divergence watch: every dof except the flex rods' twist hinges, whose tiny polar inertia lets them spin
         # at hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).

@@ -56,10 +56,37 @@ def test_drag_opposes_the_velocity_with_its_square() -> None:
     assert not data.xfrc_applied.any()
 
 
+def test_dead_zone_drag_acts_on_the_speed_above_the_free_speed() -> None:
+    """With ``free_speed`` v₀ the drag is ``−c (|v| − v₀)² v̂``: none below v₀, the plain drag's direction above."""
+    model, view, _ = _free_rod(1.0)
+    data = mujoco.MjData(model)
+    drag = StrandDrag(model, view.bodies, 500.0, free_speed=0.3)
+    data.qvel[:3] = [0.3, -0.4, 0.0]  # 0.5 m/s: 0.2 m/s above the free speed
+    mujoco.mj_forward(model, data)
+    drag.apply(data)
+    f = data.xfrc_applied[view.bodies, :3]
+    expected = -drag.coefficient[:, None] * 0.2**2 * np.array([0.6, -0.8, 0.0])
+    np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-15)
+    data.qvel[:3] = [0.15, -0.2, 0.0]  # 0.25 m/s: inside the dead zone
+    mujoco.mj_forward(model, data)
+    drag.apply(data)
+    assert not data.xfrc_applied.any()
+
+
 def test_bad_density_is_named() -> None:
     model, view, _ = _free_rod(1.0)
     with pytest.raises(ValueError, match="drag density"):
         StrandDrag(model, view.bodies, -1.0)
+    with pytest.raises(ValueError, match="drag free speed"):
+        StrandDrag(model, view.bodies, 1000.0, free_speed=-0.1)
+
+
+def test_free_speed_needs_a_drag() -> None:
+    from hairbrush_env import hair
+
+    with pytest.raises(ValueError, match="drag_free_speed"):
+        hair.PRESETS["curly"].replace(drag_free_speed=0.3)
+    assert hair.PRESETS["curly"].replace(drag_density=1000.0, drag_free_speed=0.3).drag_free_speed == 0.3
 
 
 def test_wig_digest_unchanged_by_unset_late_fields() -> None:
@@ -74,3 +101,5 @@ def test_wig_digest_unchanged_by_unset_late_fields() -> None:
     assert curly.replace(quadratic_damping=1e-3).digest() != curly.digest()
     assert curly.replace(root_run=0.5).digest() != curly.digest()
     assert curly.replace(root_twist_first=True).digest() != curly.digest()
+    with_drag = curly.replace(drag_density=1000.0)
+    assert with_drag.replace(drag_free_speed=0.3).digest() != with_drag.digest()

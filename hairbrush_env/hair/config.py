@@ -120,6 +120,9 @@ class WigConfig:
         Density ρ [kg/m³] of a medium whose quadratic drag ``−½ ρ ℓ d |v| v`` acts on every strand segment while
         it is brushed (:class:`hairbrush_env.hair.drag.StrandDrag`; chain strands; 0 = none, the default). Takes
         out the momentum mass scaling gives a curl springing off a tine.
+    drag_free_speed : float
+        Dead zone of that drag [m/s] (≥ 0): it acts only on the part of a segment's speed above this, leaving a
+        pull slower than it alone (0 = none, the default).
     friction : float
         Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
     edges_per_turn : int
@@ -212,6 +215,7 @@ class WigConfig:
     damping: float = 0.02
     quadratic_damping: float = 0.0
     drag_density: float = 0.0
+    drag_free_speed: float = 0.0
     friction: float = 0.3
     edges_per_turn: int = 8
     min_edges: int = 12
@@ -246,6 +250,7 @@ class WigConfig:
             "damping",
             "quadratic_damping",
             "drag_density",
+            "drag_free_speed",
             "friction",
             "root_gap",
             "min_spacing",
@@ -269,6 +274,7 @@ class WigConfig:
             "damping",
             "quadratic_damping",
             "drag_density",
+            "drag_free_speed",
             "friction",
             "root_gap",
             "shake_seconds",
@@ -363,6 +369,12 @@ class WigConfig:
             "needs rod_kind='chain'",
             self.drag_density,
         )
+        _require(
+            self.drag_free_speed == 0.0 or self.drag_density > 0.0,
+            "drag_free_speed",
+            "needs drag_density > 0 (it is the dead zone of that drag)",
+            self.drag_free_speed,
+        )
         if self.curliness > 0.0:
             # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).
             _require(
@@ -437,7 +449,14 @@ class WigConfig:
         return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 
-_LATE_FIELDS = ("quadratic_damping", "drag_density", "root_run", "root_run_min", "root_twist_first")
+_LATE_FIELDS = (
+    "quadratic_damping",
+    "drag_density",
+    "drag_free_speed",
+    "root_run",
+    "root_run_min",
+    "root_twist_first",
+)
 _GOLDEN = 0.5 * (1.0 + math.sqrt(5.0))
 
 # Presets: straightest first. Lengths differ like the thesis's wig set (Fig. 3.10): curlier wigs are shorter when

@@ -12,6 +12,11 @@ cost 2.5× a brushing step; here the force is computed from the velocities of th
 the step before: one step late) and written to ``mjData.xfrc_applied``: 0.14 ms a step on the default wig, ~3 % of
 a brushing step. It stays stable while ``ρ ℓ d |v| Δt / m ≪ 1`` (0.03 per m/s for the default wisp at ``ρ = 1000``
 and the 1 ms step).
+
+With a free speed ``v₀ > 0`` (``WigConfig.drag_free_speed``) the drag acts only on the part of a segment's speed above
+it, ``F = −½ ρ ℓ d (|v| − v₀)² v̂`` (none below ``v₀``): a dead zone. Put above the brush's fastest pull, it leaves the
+pull itself alone, so the brushing force does not grow with the pull speed as ``v²`` (Fig. 3.8), and still damps a
+curl whipping off a tine, which moves several times faster than the brush.
 """
 
 from __future__ import annotations
@@ -33,11 +38,18 @@ class StrandDrag:
         Ids of the strand segment bodies.
     density : float
         Density of the medium ``ρ`` [kg/m³] (> 0).
+    free_speed : float
+        Dead zone ``v₀`` [m/s] (≥ 0): the drag acts on ``|v| − v₀`` only; 0 = the plain ``−½ ρ ℓ d |v| v``.
     """
 
-    def __init__(self, model: mujoco.MjModel, bodies: np.ndarray, density: float) -> None:
+    def __init__(
+        self, model: mujoco.MjModel, bodies: np.ndarray, density: float, free_speed: float = 0.0
+    ) -> None:
         if not (np.isfinite(density) and density > 0.0):
             raise ValueError(f"drag density must be a finite number > 0, got {density!r}")
+        if not (np.isfinite(free_speed) and free_speed >= 0.0):
+            raise ValueError(f"drag free speed must be a finite number >= 0, got {free_speed!r}")
+        self.free_speed = float(free_speed)
         self.bodies = np.asarray(bodies, dtype=int)
         geoms = []
         for b in self.bodies:
@@ -61,7 +73,13 @@ class StrandDrag:
     def apply(self, data: mujoco.MjData) -> None:
         """Write the drag of the current velocities to ``data.xfrc_applied`` (forces; torques left as they are)."""
         v = self.velocity(data)
-        data.xfrc_applied[self.bodies, :3] = -(self.coefficient * np.linalg.norm(v, axis=1))[:, None] * v
+        speed = np.linalg.norm(v, axis=1)
+        if self.free_speed == 0.0:  # kept as it was: v2-v8 stay bit for bit what they were
+            data.xfrc_applied[self.bodies, :3] = -(self.coefficient * speed)[:, None] * v
+            return
+        excess = np.maximum(speed - self.free_speed, 0.0)
+        unit = v / np.maximum(speed, 1e-12)[:, None]
+        data.xfrc_applied[self.bodies, :3] = -(self.coefficient * excess**2)[:, None] * unit
 
     def clear(self, data: mujoco.MjData) -> None:
         """Remove the drag forces from ``data.xfrc_applied``."""
