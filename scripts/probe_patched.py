@@ -10,9 +10,7 @@ PATCH keys: ``solimp`` / ``solref`` (``hair.CONTACT_SOLIMP`` / ``CONTACT_SOLREF`
 after the pre-brushed states are looked up, so they are shaken without it) and ``explicit_drag``: quadratic drag
 ``−½ ρ ℓ d |v| v`` [ρ in kg/m³] on every strand segment's centre of mass, ℓ × d its side area, applied as
 ``xfrc_applied`` from the velocity before each brushing step (explicit, so it adds no cost to the step; not during
-the preparation). ``drag_free_speed`` [m/s]: the wig's own drag (``hair.drag.StrandDrag``) acts on a segment only by
-how much it moves faster than this, ``−½ ρ ℓ d (|v| − v₀)² v̂`` (none below v₀): a dead zone that leaves a pull at
-the brush's speed alone and damps a curl whipping off a tine.
+the preparation). (The dead-zone drag once patched here as ``drag_free_speed`` is ``WigConfig.drag_free_speed``.)
 """
 
 import json
@@ -70,21 +68,6 @@ if "explicit_drag" in patch:
 
     scene.BrushingSim._physics_step = _drag_step
     del mujoco
-if "drag_free_speed" in patch:
-    import numpy as np
-
-    import hairbrush_env.hair.drag as hair_drag
-
-    v0 = float(patch["drag_free_speed"])
-
-    def _dead_zone_apply(self, data):
-        v = self.velocity(data)
-        speed = np.linalg.norm(v, axis=1)
-        excess = np.clip(speed - v0, 0.0, None)
-        unit = v / np.maximum(speed, 1e-12)[:, None]
-        data.xfrc_applied[self.bodies, :3] = -(self.coefficient * excess**2)[:, None] * unit
-
-    hair_drag.StrandDrag.apply = _dead_zone_apply
 script = sys.argv[1]
 sys.argv = sys.argv[1:]
 runpy.run_path(script, run_name="__main__")

@@ -1,27 +1,50 @@
-"""Exploration probe: ``hairbrush repeat``'s study (six full strokes, every physics step checked) on HairBrush-v5's
-wig fields with some replaced, before they become a version (docs/detangling.md, *HairBrush-v5*).
+"""Exploration probe: ``hairbrush repeat``'s study (six full strokes, every physics step checked) on a version's wig
+fields with some replaced, before they become a version (docs/detangling.md, *HairBrush-v5*).
 
-    python scripts/probe_repeat_fields.py WIG TAG FIELDS_JSON SEEDS [N_STROKES]
+    python scripts/probe_repeat_fields.py WIG TAG FIELDS_JSON SEEDS [N_STROKES] [--physics vN] [--brush JSON]
     # e.g. coily M3 '{"mass_scale": 3.0}' 0      -> runs/probe/M3_coily.csv, a summary table at the end
+    # or   curly M3 '{"mass_scale": 3.0}' 0,1 6 --physics v8 --brush '{"damping": 4e-4}'
+
+``--physics``: the version whose wig fields (preset fields included) and comb are the base (default v5).
+``--brush``: BrushConfig fields changed over that comb.
 """
 
+import dataclasses
 import json
 import sys
 from pathlib import Path
 
+from hairbrush_env.brush import get_brush
 from hairbrush_env.io import write_csv_rows
 from hairbrush_env.physics import PHYSICS, PhysicsVersion
 from hairbrush_env.scene import BrushingSim
 from hairbrush_env.studies.repeated_strokes import COLUMNS, repeated_strokes, summary_markdown
 
+base, brush_fields = "v5", {}
+for flag in ("--physics", "--brush"):
+    if flag in sys.argv:
+        i = sys.argv.index(flag)
+        if flag == "--physics":
+            base = sys.argv[i + 1]
+        else:
+            brush_fields = json.loads(sys.argv[i + 1])
+        del sys.argv[i : i + 2]
 wig, tag = sys.argv[1], sys.argv[2]
 extra = json.loads(sys.argv[3])
 seeds = [int(s) for s in sys.argv[4].split(",")]
 n = int(sys.argv[5]) if len(sys.argv) > 5 else 6
-ver = PhysicsVersion("candidate", brush=PHYSICS["v5"].brush, wig_fields={**PHYSICS["v5"].wig_fields, **extra})
+ver = PhysicsVersion(
+    "candidate",
+    brush=PHYSICS[base].brush,
+    wig_fields={**PHYSICS[base].wig_fields, **extra},
+    preset_fields=PHYSICS[base].preset_fields,  # a preset's own fields (e.g. v7's curl radii) win over FIELDS
+)
 out = Path(f"runs/probe/{tag}_{wig}.csv")
 rows = []
-with BrushingSim(ver.scene_config(wig)) as sim:
+config = ver.scene_config(wig)
+if brush_fields:
+    config = dataclasses.replace(config, brush=dataclasses.replace(get_brush(config.brush), **brush_fields))
+with BrushingSim(config) as sim:
     for seed in seeds:
 
         def rec(r, seed=seed):
