@@ -6,7 +6,8 @@
     # or   curly 3 1 0.05,0.2 3 '{}' '{}' --physics v5      (HairBrush-v5's wig and brush, a third of the mass scale)
     # or   curly 10 1 0.05,0.2 3 '{}' '{"brush": {"hinged": false}}' --physics v8   (the version's comb, rigid tines)
 
-One stroke per (seed, speed) from the pre-brushed wig, no abort; prints the max force per seed and the mean per speed
+One stroke per (seed, speed) from the pre-brushed wig, no abort; prints the max force per seed, the mean per speed and
+how far into the pull each seed's max was sampled
 (docs/detangling.md, *Correction*: is the mass-scaled stroke still quasi-static?). A "brush" dict in
 SCENE_FIELDS_JSON holds BrushConfig fields over the version's comb.
 """
@@ -39,16 +40,21 @@ if isinstance(scene_fields.get("brush"), dict):
 scene_fields.setdefault("brush", physics.brush)
 sim = BrushingSim(SceneConfig(wig=w, **scene_fields))
 for speed in speeds:
-    forces = []
+    forces, where = [], []
     for seed in range(n_seeds):
         sim.reset(seed)
         res = sim.stroke(b_l, speed=speed, abort_force=None)
         forces.append(res.max_force)
+        t, f = res.force_trace
+        where.append(1000.0 * speed * float(t[np.argmax(f)]) if f.size else np.nan)
         if res.diverged:
             print(f"seed {seed} at {speed:g} m/s diverged: its force is cut short", flush=True)
     print(
         f"{wig} mass_scale {scale:g} b_l {b_l:g} speed {speed:g} m/s: max force",
         " ".join(f"{f:.2f}" for f in forces),
-        f"mean {np.mean(forces):.2f} ± {np.std(forces):.2f} N",
+        f"mean {np.mean(forces):.2f} ± {np.std(forces):.2f} N;",
+        "at",
+        " ".join(f"{w:.0f}" for w in where),
+        "mm of pull",
         flush=True,
     )
