@@ -2,11 +2,12 @@
 fields with some replaced, before they become a version (docs/detangling.md, *HairBrush-v5*).
 
     python scripts/probe_repeat_fields.py WIG TAG FIELDS_JSON SEEDS [N_STROKES] [--physics vN] [--brush JSON]
+        [--scene JSON]
     # e.g. coily M3 '{"mass_scale": 3.0}' 0      -> runs/probe/M3_coily.csv, a summary table at the end
     # or   curly M3 '{"mass_scale": 3.0}' 0,1 6 --physics v8 --brush '{"damping": 4e-4}'
 
 ``--physics``: the version whose wig fields (preset fields included) and comb are the base (default v5).
-``--brush``: BrushConfig fields changed over that comb.
+``--brush``: BrushConfig fields changed over that comb. ``--scene``: SceneConfig fields (e.g. ``contact_timestep``).
 """
 
 import dataclasses
@@ -20,14 +21,16 @@ from hairbrush_env.physics import PHYSICS, PhysicsVersion
 from hairbrush_env.scene import BrushingSim
 from hairbrush_env.studies.repeated_strokes import COLUMNS, repeated_strokes, summary_markdown
 
-base, brush_fields = "v5", {}
-for flag in ("--physics", "--brush"):
+base, brush_fields, scene_fields = "v5", {}, {}
+for flag in ("--physics", "--brush", "--scene"):
     if flag in sys.argv:
         i = sys.argv.index(flag)
         if flag == "--physics":
             base = sys.argv[i + 1]
-        else:
+        elif flag == "--brush":
             brush_fields = json.loads(sys.argv[i + 1])
+        else:
+            scene_fields = json.loads(sys.argv[i + 1])
         del sys.argv[i : i + 2]
 wig, tag = sys.argv[1], sys.argv[2]
 extra = json.loads(sys.argv[3])
@@ -41,7 +44,7 @@ ver = PhysicsVersion(
 )
 out = Path(f"runs/probe/{tag}_{wig}.csv")
 rows = []
-config = ver.scene_config(wig)
+config = ver.scene_config(wig, **scene_fields)
 if brush_fields:
     config = dataclasses.replace(config, brush=dataclasses.replace(get_brush(config.brush), **brush_fields))
 with BrushingSim(config) as sim:
