@@ -177,11 +177,7 @@ class BrushingSim:
         self._hair_dofs = np.flatnonzero(np.isin(self.model.dof_bodyid, self.hair_bodies))
         # Drag of the medium on the strands while they are brushed (WigConfig.drag_density; not in the preparation,
         # so the pre-brushed wigs are those without it).
-        self._drag = (
-            StrandDrag(self.model, self.hair_bodies, self.wig.drag_density, self.wig.drag_free_speed)
-            if self.wig.drag_density
-            else None
-        )
+        self._drag = StrandDrag.of_wig(self.model, self.hair_bodies, self.wig)
         # Divergence watch: every dof except the flex rods' twist hinges, whose tiny polar inertia lets them spin
         # at hundreds of rad/s in normal operation (measured: 85 rad/s during a plain pull).
         twist = {f"{n}_twist" for n in self.layout.names} if self.wig.rod_kind == "flex" else set()

@@ -6,7 +6,8 @@ fields with some replaced, before they become a version (docs/detangling.md, *Ha
     # e.g. coily M3 '{"mass_scale": 3.0}' 0      -> runs/probe/M3_coily.csv, a summary table at the end
     # or   curly M3 '{"mass_scale": 3.0}' 0,1 6 --physics v8 --brush '{"damping": 4e-4}'
 
-``--physics``: the version whose wig fields (preset fields included) and comb are the base (default v5).
+``--physics``: the version whose wig (preset fields included) and comb are the base (default v5); FIELDS_JSON is
+set over that wig.
 ``--brush``: BrushConfig fields changed over that comb. ``--scene``: SceneConfig fields (e.g. ``contact_timestep``).
 """
 
@@ -17,7 +18,7 @@ from pathlib import Path
 
 from hairbrush_env.brush import get_brush
 from hairbrush_env.io import write_csv_rows
-from hairbrush_env.physics import PHYSICS, PhysicsVersion
+from hairbrush_env.physics import PHYSICS
 from hairbrush_env.scene import BrushingSim
 from hairbrush_env.studies.repeated_strokes import COLUMNS, repeated_strokes, summary_markdown
 
@@ -36,17 +37,15 @@ wig, tag = sys.argv[1], sys.argv[2]
 extra = json.loads(sys.argv[3])
 seeds = [int(s) for s in sys.argv[4].split(",")]
 n = int(sys.argv[5]) if len(sys.argv) > 5 else 6
-ver = PhysicsVersion(
-    "candidate",
-    brush=PHYSICS[base].brush,
-    wig_fields={**PHYSICS[base].wig_fields, **extra},
-    preset_fields=PHYSICS[base].preset_fields,  # a preset's own fields (e.g. v7's curl radii) win over FIELDS
-)
 out = Path(f"runs/probe/{tag}_{wig}.csv")
 rows = []
-config = ver.scene_config(wig, **scene_fields)
-if brush_fields:
-    config = dataclasses.replace(config, brush=dataclasses.replace(get_brush(config.brush), **brush_fields))
+config = PHYSICS[base].scene_config(wig, **scene_fields)
+# FIELDS win over the version's fields, a preset's own (e.g. v7's curl radii) included, as in probe_speed.py
+config = dataclasses.replace(
+    config,
+    wig=config.wig.replace(**extra),
+    brush=dataclasses.replace(get_brush(config.brush), **brush_fields),
+)
 with BrushingSim(config) as sim:
     for seed in seeds:
 

@@ -42,6 +42,22 @@ def test_falling_strand_reaches_the_terminal_velocity(mass_scale: float) -> None
     assert np.abs(v[:, :2]).max() < 0.01 * v_t
 
 
+def test_falling_strand_with_a_dead_zone_settles_above_it_by_the_terminal_velocity() -> None:
+    """With the free speed v₀ the drag is ``½ ρ ℓ d (|v| − v₀)²``, so the broadside fall settles at ``v₀ + v_t``."""
+    model, view, rod = _free_rod(10.0)
+    data = mujoco.MjData(model)
+    rho, v0 = 1000.0, 0.2
+    drag = StrandDrag(model, view.bodies, rho, free_speed=v0)
+    mujoco.mj_forward(model, data)
+    for _ in range(round(1.5 / model.opt.timestep)):
+        drag.apply(data)
+        mujoco.mj_step(model, data)
+    v = drag.velocity(data)
+    lam = RHO_HAIR * math.pi * rod.radius**2
+    v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * rod.radius))
+    assert v[:, 2] == pytest.approx(-(v0 + v_t), rel=0.02)
+
+
 def test_drag_opposes_the_velocity_with_its_square() -> None:
     model, view, _ = _free_rod(1.0)
     data = mujoco.MjData(model)

@@ -24,6 +24,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from .config import WigConfig
+
 __all__ = ["StrandDrag"]
 
 
@@ -63,6 +65,11 @@ class StrandDrag:
         side_area = (2.0 * model.geom_size[geoms, 1]) * (2.0 * model.geom_size[geoms, 0])
         self.coefficient = 0.5 * float(density) * side_area
         self._root = model.body_rootid[self.bodies]
+
+    @classmethod
+    def of_wig(cls, model: mujoco.MjModel, bodies: np.ndarray, wig: WigConfig) -> StrandDrag | None:
+        """The drag ``wig`` asks for (``drag_density``, ``drag_free_speed``) on ``bodies``; ``None`` if it has none."""
+        return cls(model, bodies, wig.drag_density, wig.drag_free_speed) if wig.drag_density else None
 
     def velocity(self, data: mujoco.MjData) -> np.ndarray:
         """World linear velocity of each body's centre of mass (from ``cvel``, as of the last forward pass)."""

@@ -151,11 +151,7 @@ class PairOnComb:
             self.model.geom_contype[ghost] = 0
             self.model.geom_conaffinity[ghost] = 0
         bodies = np.concatenate([v.bodies for v in self._views])
-        self._drag = (
-            StrandDrag(self.model, bodies, self.wig.drag_density, self.wig.drag_free_speed)
-            if self.wig.drag_density
-            else None
-        )
+        self._drag = StrandDrag.of_wig(self.model, bodies, self.wig)
         self._aside()
         if shake_seed is not None:
             shake(self.model, self.data, self.wig, int(shake_seed), strand_bodies=bodies)
