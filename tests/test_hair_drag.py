@@ -14,8 +14,10 @@ from hairbrush_env.hair.drag import StrandDrag
 RHO_HAIR = 1300.0
 
 
-def _free_rod(mass_scale: float) -> tuple[mujoco.MjModel, rods.RodView, rods.RodSpec]:
-    pts = rods.straight_rod_points([0.0, 0.0, 1.0], [1.0, 0.0, 0.0], 0.1, 10)
+def _free_rod(
+    mass_scale: float, direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
+) -> tuple[mujoco.MjModel, rods.RodView, rods.RodSpec]:
+    pts = rods.straight_rod_points([0.0, 0.0, 1.0], list(direction), 0.1, 10)
     rod = rods.RodSpec(
         name="r", points=pts, radius=8e-4, young=1e8, density=RHO_HAIR, clamp=None, mass_scale=mass_scale
     )
@@ -89,6 +91,69 @@ def test_dead_zone_drag_acts_on_the_speed_above_the_free_speed() -> None:
     assert not data.xfrc_applied.any()
 
 
+@pytest.mark.parametrize("normal_only", [False, True])
+def test_cross_flow_drag_leaves_a_strand_falling_end_on_in_free_fall(normal_only: bool) -> None:
+    """A vertical strand falling along its own axis: the cross-flow drag (``normal_only``) has no normal velocity to
+    act on, so it falls as it does without any drag, at g t; the drag of the whole velocity holds it at the
+    broadside terminal speed v_t (that drag does not know the strand's orientation)."""
+
+    def fall(drag_of) -> np.ndarray:
+        model, view, _ = _free_rod(1.0, direction=(0.0, 0.0, 1.0))  # real mass: free fall at g
+        data = mujoco.MjData(model)
+        drag = drag_of(model, view.bodies)
+        mujoco.mj_forward(model, data)
+        for _ in range(round(0.3 / model.opt.timestep)):
+            if drag is not None:
+                drag.apply(data)
+            mujoco.mj_step(model, data)
+        return StrandDrag(model, view.bodies, 1.0).velocity(data)[:, 2]
+
+    rho = 1000.0
+    v_z = fall(lambda m, b: StrandDrag(m, b, rho, normal_only=normal_only))
+    if normal_only:
+        free = fall(lambda m, b: None)
+        assert free == pytest.approx(-9.81 * 0.3, rel=0.01)  # g t, read one step late
+        np.testing.assert_allclose(v_z, free, rtol=1e-9)
+    else:
+        lam = RHO_HAIR * math.pi * 8e-4**2
+        v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * 8e-4))
+        assert v_z == pytest.approx(-v_t, rel=0.02)
+
+
+def test_cross_flow_drag_of_a_falling_broadside_strand_is_the_plain_drag() -> None:
+    """Broadside, the whole velocity is normal to the strand: the cross-flow drag settles at the same v_t."""
+    model, view, rod = _free_rod(10.0)
+    data = mujoco.MjData(model)
+    rho = 1000.0
+    drag = StrandDrag(model, view.bodies, rho, normal_only=True)
+    mujoco.mj_forward(model, data)
+    for _ in range(round(0.5 / model.opt.timestep)):
+        drag.apply(data)
+        mujoco.mj_step(model, data)
+    lam = RHO_HAIR * math.pi * rod.radius**2
+    v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * rod.radius))
+    assert drag.velocity(data)[:, 2] == pytest.approx(-v_t, rel=0.02)
+
+
+def test_cross_flow_drag_acts_on_the_normal_velocity_only() -> None:
+    """``−c |v_n| v_n`` with ``v_n = v − (v·t) t``: a strand along x moving at (0.3, −0.4, 0) m/s feels the drag of
+    (0, −0.4, 0) only; with the dead zone as well, of |v_n| − v₀."""
+    model, view, _ = _free_rod(1.0)
+    data = mujoco.MjData(model)
+    drag = StrandDrag(model, view.bodies, 500.0, normal_only=True)
+    data.qvel[:3] = [0.3, -0.4, 0.0]
+    mujoco.mj_forward(model, data)
+    np.testing.assert_allclose(np.abs(drag.axes(data)[:, 0]), 1.0, rtol=1e-12)
+    drag.apply(data)
+    f = data.xfrc_applied[view.bodies, :3]
+    expected = -drag.coefficient[:, None] * 0.4 * np.array([0.0, -0.4, 0.0])
+    np.testing.assert_allclose(f, expected, rtol=1e-9, atol=1e-15)
+    dead = StrandDrag(model, view.bodies, 500.0, free_speed=0.1, normal_only=True)
+    dead.apply(data)
+    expected = -dead.coefficient[:, None] * 0.3**2 * np.array([0.0, -1.0, 0.0])
+    np.testing.assert_allclose(data.xfrc_applied[view.bodies, :3], expected, rtol=1e-9, atol=1e-15)
+
+
 def test_bad_density_is_named() -> None:
     model, view, _ = _free_rod(1.0)
     with pytest.raises(ValueError, match="drag density"):
@@ -105,6 +170,15 @@ def test_free_speed_needs_a_drag() -> None:
     assert hair.PRESETS["curly"].replace(drag_density=1000.0, drag_free_speed=0.3).drag_free_speed == 0.3
 
 
+def test_normal_only_needs_a_drag() -> None:
+    from hairbrush_env import hair
+
+    with pytest.raises(ValueError, match="drag_normal_only"):
+        hair.PRESETS["curly"].replace(drag_normal_only=True)
+    with pytest.raises(ValueError, match="drag_normal_only"):
+        hair.PRESETS["curly"].replace(drag_density=1000.0, drag_normal_only=1)
+
+
 def test_wig_digest_unchanged_by_unset_late_fields() -> None:
     """Cached pre-brushed states stay valid: ``quadratic_damping``, ``drag_density``, ``root_run`` and
     ``root_twist_first`` count in the digest only when set (the curly preset's digest before they existed:
@@ -119,3 +193,5 @@ def test_wig_digest_unchanged_by_unset_late_fields() -> None:
     assert curly.replace(root_twist_first=True).digest() != curly.digest()
     with_drag = curly.replace(drag_density=1000.0)
     assert with_drag.replace(drag_free_speed=0.3).digest() != with_drag.digest()
+    assert with_drag.replace(drag_normal_only=True).digest() != with_drag.digest()
+    assert with_drag.replace(drag_normal_only=False).digest() == with_drag.digest()

@@ -123,6 +123,10 @@ class WigConfig:
     drag_free_speed : float
         Dead zone of that drag [m/s] (≥ 0): it acts only on the part of a segment's speed above this, leaving a
         pull slower than it alone (0 = none, the default).
+    drag_normal_only : bool
+        Let that drag act on the velocity component across each segment only (the cross-flow principle of a
+        slender cylinder's pressure drag), not along it: a curl turning about its own axis to let a tine through, and
+        a strand sliding along itself, then feel no drag (False, the default: on the whole velocity).
     friction : float
         Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
     edges_per_turn : int
@@ -216,6 +220,7 @@ class WigConfig:
     quadratic_damping: float = 0.0
     drag_density: float = 0.0
     drag_free_speed: float = 0.0
+    drag_normal_only: bool = False
     friction: float = 0.3
     edges_per_turn: int = 8
     min_edges: int = 12
@@ -375,6 +380,18 @@ class WigConfig:
             "needs drag_density > 0 (it is the dead zone of that drag)",
             self.drag_free_speed,
         )
+        _require(
+            isinstance(self.drag_normal_only, bool),
+            "drag_normal_only",
+            "must be True or False",
+            self.drag_normal_only,
+        )
+        _require(
+            not self.drag_normal_only or self.drag_density > 0.0,
+            "drag_normal_only",
+            "needs drag_density > 0 (it says which velocity that drag acts on)",
+            self.drag_normal_only,
+        )
         if self.curliness > 0.0:
             # A curl tighter than the wisp itself cannot exist (neighbouring turns would overlap).
             _require(
@@ -453,6 +470,7 @@ _LATE_FIELDS = (
     "quadratic_damping",
     "drag_density",
     "drag_free_speed",
+    "drag_normal_only",
     "root_run",
     "root_run_min",
     "root_twist_first",
