@@ -195,3 +195,39 @@ def test_wig_digest_unchanged_by_unset_late_fields() -> None:
     assert with_drag.replace(drag_free_speed=0.3).digest() != with_drag.digest()
     assert with_drag.replace(drag_normal_only=True).digest() != with_drag.digest()
     assert with_drag.replace(drag_normal_only=False).digest() == with_drag.digest()
+
+
+@pytest.mark.parametrize("normal_only", [False, True])
+def test_a_curl_turning_about_its_axis_feels_sin3_of_the_drag_torque_across_it(normal_only: bool) -> None:
+    """A helix (R 12 mm, P 24 mm: curly's R/P 0.5) turning rigidly about its axis at ω, as a curl does to let a tine
+    through. Its wire moves at ωR along the turn, at the lead angle λ (tan λ = P / 2πR) to itself, so the drag of the
+    whole velocity brakes it with the torque ``½ ρ d L R (ωR)²`` and the cross-flow drag with ``sin³ λ`` of that
+    (``v_n = ωR sin λ``, and its share along the turn is ``sin λ``): 0.027 for curly. The chain is the helix's
+    polygon, so R and λ are its chords' (midpoints at R cos(Δφ/2), lead tan λ = (P Δφ / 2π) / (2 R sin(Δφ/2))."""
+    radius, pitch, turns, per_turn = 0.012, 0.024, 3, 16
+    phi = np.linspace(0.0, 2.0 * math.pi * turns, turns * per_turn + 1)
+    pts = np.column_stack([radius * np.cos(phi), radius * np.sin(phi), 1.0 - pitch * phi / (2.0 * math.pi)])
+    rod = rods.RodSpec(name="h", points=pts, radius=8e-4, young=1e8, density=RHO_HAIR, clamp=None)
+    model = rods.build_rod_model([rod])
+    view = rods.RodView(model, "h")
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    omega = np.array([0.0, 0.0, 20.0])  # rad/s about the helix axis (the world z axis through x = y = 0)
+    root = view.bodies[0]
+    data.qvel[:3] = np.cross(
+        omega, data.xpos[root]
+    )  # the free joint: world linear velocity of the root's origin
+    data.qvel[3:6] = data.xmat[root].reshape(3, 3).T @ omega  # and its angular velocity in the root's frame
+    rho = 1000.0
+    drag = StrandDrag(model, view.bodies, rho, normal_only=normal_only)
+    mujoco.mj_forward(model, data)
+    v = drag.velocity(data)
+    np.testing.assert_allclose(v, np.cross(omega, data.xipos[view.bodies]), atol=1e-9)  # a rigid turn
+    drag.apply(data)
+    torque = np.cross(data.xipos[view.bodies], data.xfrc_applied[view.bodies, :3])[:, 2].sum()
+    dphi = 2.0 * math.pi / per_turn
+    r_mid = radius * math.cos(dphi / 2.0)
+    lam = math.atan(pitch * dphi / (2.0 * math.pi) / (2.0 * radius * math.sin(dphi / 2.0)))
+    full = -0.5 * rho * 2.0 * rod.radius * rod.length * r_mid * (omega[2] * r_mid) ** 2
+    expected = full * math.sin(lam) ** 3 if normal_only else full
+    assert torque == pytest.approx(expected, rel=1e-3)
