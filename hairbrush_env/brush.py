@@ -197,6 +197,10 @@ BRUSH_PRESETS["wide_soft_comb"] = dataclasses.replace(BRUSH_PRESETS["soft_comb"]
 # μ < tan λ = P / (2π R) (its lead angle), else it locks and is drawn straight. At 0.3, curly (0.32) is just free and
 # tight_curl (0.25) and coily (0.20) lock; at 0.15 every preset's curl turns (docs/detangling.md, *HairBrush-v8*).
 BRUSH_PRESETS["smooth_comb"] = dataclasses.replace(BRUSH_PRESETS["wide_soft_comb"], friction=0.15)
+# The smooth comb with a tenth of the hinge damping, ζ ≈ 0.075 instead of 0.75: a nylon tine springs back and rings.
+# A tine bent by a curl turning round it gives way faster at a faster pull, and the damping read that rate as force
+# (curly's full stroke +27 % for 4× the speed with it, +15 % without; docs/detangling.md, *HairBrush-v9*).
+BRUSH_PRESETS["springy_comb"] = dataclasses.replace(BRUSH_PRESETS["smooth_comb"], damping=0.0004)
 """Named brushes. ``comb`` (the scenes' default): one row of 23 rigid 60 mm tines at 20 mm (±220 mm), spanning the
 default one-group-deep curtain (``WigConfig.group_rows = 1``, 40 mm group spacing): every group axis has a tine
 through it and a tine between neighbouring groups, so each stroke parts the strands of every pair; 60 mm crosses a
@@ -208,7 +212,8 @@ soft-bristled brush, for studies of bristle compliance: it frees a pair whose wo
 but over repeated strokes jams occur elsewhere and it combs out no better (``docs/detangling.md``, *Jams,
 soft tines*). ``wide_soft_comb``: ``soft_comb`` with 25 tines (±240 mm), for the twelve-pair curtain of
 ``HairBrush-v3``. ``smooth_comb``: ``wide_soft_comb`` with tines of friction 0.15, the conditioned hair's, for
-``HairBrush-v8``: curls turn round a tine pulled through them instead of locking on it."""
+``HairBrush-v8``: curls turn round a tine pulled through them instead of locking on it. ``springy_comb``:
+``smooth_comb`` with a tenth of the hinge damping (ζ ≈ 0.075), for ``HairBrush-v9``."""
 
 
 def get_brush(brush: str | BrushConfig) -> BrushConfig:

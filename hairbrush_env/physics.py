@@ -53,6 +53,12 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   and drawn straight (:mod:`hairbrush_env.studies.screw_lock`). At 0.3 tight_curl's (0.25) and coily's (0.20) curls
   locked and curly's (0.32) nearly did, at any start height: their short strokes read almost what full ones read.
   At 0.15 every preset's curls turn (docs/detangling.md, *HairBrush-v8*).
+- ``v9``: v8 with the strands' drag acting on the velocity across them only (``drag_normal_only``, the cross-flow
+  principle of a slender cylinder's pressure drag) and the ``springy_comb``, whose tines keep a tenth of v1's hinge
+  damping (ζ ≈ 0.075). A curl letting a tine through turns about its own axis once per pitch of travel, 4× as fast
+  at a 4× faster pull; its wire then moves nearly along itself, so v8's drag of the whole velocity braked it
+  (sin³ λ of that under v9's: 0.027 on curly), and the tines' damping read the faster give as force. Under v8 curly's
+  full stroke moved +52 % for 0.05 → 0.2 m/s (Fig. 3.8); under v9 +15 % (docs/detangling.md, *HairBrush-v9*).
 """
 
 from __future__ import annotations
@@ -188,6 +194,14 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         preset_fields=_V7_PRESET_FIELDS,
         summary="v7 with tines that hair slides on at its own friction 0.15 (curls turn round a tine instead of "
         "locking on it)",
+    ),
+    "v9": PhysicsVersion(
+        "v9",
+        brush="springy_comb",
+        wig_fields={**_V6_WIG_FIELDS, "drag_normal_only": True},
+        preset_fields=_V7_PRESET_FIELDS,
+        summary="v8 with the strands' drag on the velocity across them only (a curl turning round a tine feels "
+        "none) and tines that spring back (a tenth of the hinge damping)",
     ),
 }
 

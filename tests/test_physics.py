@@ -17,6 +17,7 @@ from hairbrush_env.envs import (
     V6_PHYSICS,
     V7_PHYSICS,
     V8_PHYSICS,
+    V9_PHYSICS,
 )
 from hairbrush_env.hair import get_wig
 from hairbrush_env.physics import PHYSICS, claim_physics, get_physics
@@ -31,7 +32,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8", "v9"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -240,6 +241,23 @@ def test_v8_is_v7_with_tines_every_preset_curl_turns_round() -> None:
             assert mu7 > tan_lead, name  # locked under v7
 
 
+def test_v9_is_v8_with_the_cross_flow_drag_and_springy_tines() -> None:
+    """v9 changes two things against v8, both what a slow pull should not feel: the strands' drag acts on the velocity
+    across them only (``drag_normal_only``), and the comb's tines keep a tenth of their hinge damping (ζ ≈ 0.075 with
+    the tine's inertia; v1–v8: 0.75). Wigs, curls, contacts and the tines' friction and stiffness stay v8's
+    (docs/detangling.md, *HairBrush-v9*)."""
+    from hairbrush_env.hair import PRESETS
+
+    v8, v9 = get_physics("v8"), get_physics("v9")
+    assert dict(v9.wig_fields) == {**v8.wig_fields, "drag_normal_only": True}
+    assert dict(v9.preset_fields) == dict(v8.preset_fields)
+    b8, b9 = get_brush(v8.brush), get_brush(v9.brush)
+    assert dataclasses.replace(b9, damping=b8.damping) == b8 and b9.damping == pytest.approx(0.1 * b8.damping)
+    assert ENV_IDS["HairBrush-v9"][2] == ENV_IDS["HairBrushContinuous-v9"][2] == V9_PHYSICS == v9.env_kwargs()
+    for name in (*PRESETS, "held_out_curly", "held_out_tight"):
+        assert v9.wig(name) == v8.wig(name).replace(drag_normal_only=True), name
+
+
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:
     """How many entwined pairs have a tine between their strands at the first physics step of the pull."""
     from hairbrush_env.scene import BrushingSim
@@ -278,8 +296,8 @@ def test_a_wig_v3_cannot_build_names_the_version() -> None:
 
 
 def test_unknown_version_is_refused() -> None:
-    with pytest.raises(ValueError, match="physics: unknown version 'v9'; valid: v0, v1, v2, v3"):
-        get_physics("v9")
+    with pytest.raises(ValueError, match="physics: unknown version 'v10'; valid: v0, v1, v2, v3"):
+        get_physics("v10")
 
 
 def test_a_study_directory_keeps_one_version(tmp_path) -> None:

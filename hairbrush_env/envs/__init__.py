@@ -11,6 +11,7 @@
 - ``HairBrush-v6``, ``HairBrushContinuous-v6`` — the same envs with the v6 physics (:data:`V6_PHYSICS`).
 - ``HairBrush-v7``, ``HairBrushContinuous-v7`` — the same envs with the v7 physics (:data:`V7_PHYSICS`).
 - ``HairBrush-v8``, ``HairBrushContinuous-v8`` — the same envs with the v8 physics (:data:`V8_PHYSICS`).
+- ``HairBrush-v9``, ``HairBrushContinuous-v9`` — the same envs with the v9 physics (:data:`V9_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -33,6 +34,7 @@ __all__ = [
     "V6_PHYSICS",
     "V7_PHYSICS",
     "V8_PHYSICS",
+    "V9_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -65,6 +67,9 @@ V7_PHYSICS: dict = PHYSICS["v7"].env_kwargs()
 #: What v8 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v8"]`` (v7 with the ``smooth_comb``, whose
 #: tines hair slides on at its own friction 0.15, so curls turn round a tine instead of locking on it).
 V8_PHYSICS: dict = PHYSICS["v8"].env_kwargs()
+#: What v9 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v9"]`` (v8 with the strands' drag on the
+#: velocity across them only, ``WigConfig.drag_normal_only``, and the ``springy_comb``, whose tines are lightly damped).
+V9_PHYSICS: dict = PHYSICS["v9"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -118,6 +123,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V8_PHYSICS,
+    ),
+    "HairBrush-v9": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V9_PHYSICS),
+    "HairBrushContinuous-v9": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V9_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).
