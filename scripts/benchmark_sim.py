@@ -295,13 +295,13 @@ def section_force_table(args: argparse.Namespace) -> None:
 
 
 def section_pull_through(args: argparse.Namespace) -> None:
-    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1–v6 and v8 physics against
-    the wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
+    """Pull-through stroke (b_l = 1, no abort) of the default wig and comb (v0) and of the v1–v6, v8 and v9 physics
+    against the wave-1 flex wig and scene, seeds 7 and 11 (issue 21's reference: 5.5–6.8 CPU s for the flex wig)."""
     seeds = (7,) if args.quick else (7, 11)
     base = hair.PRESETS[hair.DEFAULT_WIG]
     cases = list(wig_cases(base).items())[::-1]  # flex first: the reference
     # HairBrush-vN's physics, the comb widened like the default's (v7 brushes curly as v6 does)
-    for version in ("v1", "v2", "v3", "v4", "v5", "v6", "v8"):
+    for version in ("v1", "v2", "v3", "v4", "v5", "v6", "v8", "v9"):
         physics = PHYSICS[version]
         soft = dataclasses.replace(
             get_brush(physics.brush), columns=max(get_brush(physics.brush).columns, 2 * base.n_groups + 1)
