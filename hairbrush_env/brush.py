@@ -199,7 +199,8 @@ BRUSH_PRESETS["wide_soft_comb"] = dataclasses.replace(BRUSH_PRESETS["soft_comb"]
 BRUSH_PRESETS["smooth_comb"] = dataclasses.replace(BRUSH_PRESETS["wide_soft_comb"], friction=0.15)
 # The smooth comb with a tenth of the hinge damping, ζ ≈ 0.075 instead of 0.75: a nylon tine springs back and rings.
 # A tine bent by a curl turning round it gives way faster at a faster pull, and the damping read that rate as force
-# (curly's full stroke +27 % for 4× the speed with it, +15 % without; docs/detangling.md, *HairBrush-v9*).
+# (curly's full stroke, cross-flow drag: +27 % for 4× the speed at v8's damping, +15 % at a tenth; docs/detangling.md,
+# *HairBrush-v9*).
 BRUSH_PRESETS["springy_comb"] = dataclasses.replace(BRUSH_PRESETS["smooth_comb"], damping=0.0004)
 """Named brushes. ``comb`` (the scenes' default): one row of 23 rigid 60 mm tines at 20 mm (±220 mm), spanning the
 default one-group-deep curtain (``WigConfig.group_rows = 1``, 40 mm group spacing): every group axis has a tine

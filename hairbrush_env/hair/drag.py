@@ -20,10 +20,10 @@ curl whipping off a tine, which moves several times faster than the brush.
 
 With ``normal_only`` (``WigConfig.drag_normal_only``) the drag acts on the velocity across each segment only,
 ``v_n = v − (v·t) t`` with ``t`` the segment's axis: the cross-flow principle, by which a slender cylinder's pressure
-drag depends on the normal component of the flow alone (its skin friction along the axis is two orders smaller and
-left out). A curl that lets a tine through turns about its own helix axis, and its wire then moves nearly along
-itself (the wire's angle to the turning direction is the lead angle λ, tan λ = P / (2π R)), so it feels
-``sin² λ`` of the drag of the whole velocity: 0.09 for curly, 0.04 for coily.
+drag depends on the normal component of the flow alone (its skin friction along the axis is one to two orders
+smaller and left out). A curl that lets a tine through turns about its own helix axis, and its wire then moves
+nearly along itself (the wire's angle to the turning direction is the lead angle λ, tan λ = P / (2π R)), so it
+feels ``sin² λ`` of the drag of the whole velocity: 0.09 for curly, 0.04 for coily.
 """
 
 from __future__ import annotations
