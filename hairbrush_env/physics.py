@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v8`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v9`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -57,7 +57,7 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   principle of a slender cylinder's pressure drag) and the ``springy_comb``, whose tines keep a tenth of v1's hinge
   damping (ζ ≈ 0.075). A curl letting a tine through turns about its own axis once per pitch of travel, 4× as fast
   at a 4× faster pull; its wire then moves nearly along itself, so v8's drag of the whole velocity braked it
-  (sin³ λ of that under v9's: 0.027 on curly), and the tines' damping read the faster give as force. Under v8 curly's
+  (sin³ λ of that under v9's: 0.028 on curly), and the tines' damping read the faster give as force. Under v8 curly's
   full stroke moved +52 % for 0.05 → 0.2 m/s (Fig. 3.8); under v9 +15 % (docs/detangling.md, *HairBrush-v9*).
 """
 
@@ -201,7 +201,7 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         wig_fields={**_V6_WIG_FIELDS, "drag_normal_only": True},
         preset_fields=_V7_PRESET_FIELDS,
         summary="v8 with the strands' drag on the velocity across them only (a curl turning round a tine feels "
-        "none) and tines that spring back (a tenth of the hinge damping)",
+        "a fraction of it) and tines that spring back (a tenth of the hinge damping)",
     ),
 }
 

@@ -19,6 +19,7 @@ import numpy as np
 from hairbrush_env import hair
 from hairbrush_env.physics import PHYSICS, get_physics
 from hairbrush_env.scene import BrushingSim
+from hairbrush_env.scene_build import SCENE_TINE_PREFIX
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("wig", choices=list(hair.PRESETS))
@@ -29,11 +30,12 @@ args = parser.parse_args()
 
 sim = BrushingSim(get_physics(args.physics).scene_config(args.wig))
 m = sim.model
-tines = {g for g in range(m.ngeom) if m.geom(g).name.startswith("arm/brush/tine_")}
-strand_edge = {}  # hair geom -> (strand, edge), from the bodies' names hair{strand}_{edge}
-for g in np.flatnonzero(m.geom_group == hair.HAIR_GEOM_GROUP):
-    strand, edge = m.body(m.geom_bodyid[g]).name.removeprefix("hair").split("_")
-    strand_edge[int(g)] = (int(strand), int(edge))
+tines = {g for g in range(m.ngeom) if m.geom(g).name.startswith(SCENE_TINE_PREFIX)}
+strand_edge = {}  # hair geom -> (strand, edge counted from the root)
+for strand, view in enumerate(sim.entanglement_meter.views):
+    for edge, body in enumerate(view.bodies):
+        for g in np.flatnonzero(m.geom_bodyid == body):
+            strand_edge[int(g)] = (strand, edge)
 n_strands = sim.wig.n_strands
 f6 = np.zeros(6)
 

@@ -180,8 +180,8 @@ def test_normal_only_needs_a_drag() -> None:
 
 
 def test_wig_digest_unchanged_by_unset_late_fields() -> None:
-    """Cached pre-brushed states stay valid: ``quadratic_damping``, ``drag_density``, ``root_run`` and
-    ``root_twist_first`` count in the digest only when set (the curly preset's digest before they existed:
+    """Cached pre-brushed states stay valid: ``quadratic_damping``, ``drag_density``, ``drag_free_speed``,
+    ``drag_normal_only``, ``root_run`` and ``root_twist_first`` count in the digest only when set (the curly preset's digest before they existed:
     01ed93b7c0f2bb45)."""
     from hairbrush_env import hair
 
@@ -202,7 +202,7 @@ def test_a_curl_turning_about_its_axis_feels_sin3_of_the_drag_torque_across_it(n
     """A helix (R 12 mm, P 24 mm: curly's R/P 0.5) turning rigidly about its axis at ω, as a curl does to let a tine
     through. Its wire moves at ωR along the turn, at the lead angle λ (tan λ = P / 2πR) to itself, so the drag of the
     whole velocity brakes it with the torque ``½ ρ d L R (ωR)²`` and the cross-flow drag with ``sin³ λ`` of that
-    (``v_n = ωR sin λ``, and its share along the turn is ``sin λ``): 0.027 for curly. The chain is the helix's
+    (``v_n = ωR sin λ``, and its share along the turn is ``sin λ``): 0.028 for curly. The chain is the helix's
     polygon, so R and λ are its chords' (midpoints at R cos(Δφ/2), lead tan λ = (P Δφ / 2π) / (2 R sin(Δφ/2))."""
     radius, pitch, turns, per_turn = 0.012, 0.024, 3, 16
     phi = np.linspace(0.0, 2.0 * math.pi * turns, turns * per_turn + 1)

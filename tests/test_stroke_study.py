@@ -323,7 +323,7 @@ def test_fig_3_8_under_v9_reduced() -> None:
 def test_fig_3_8_under_v9() -> None:
     """Fig. 3.8 under v9 (``hairbrush strokes --physics v9 --wigs curly,coily --brush-lengths 0.67,1 --speeds
     0.05,0.2 --seeds 3``): 0.05 → 0.2 m/s moves the mean max force by ≤ 25 % on both wigs at both lengths (measured
-    curly +24 % at b_l 0.67 and +15 % at 1, coily +6 % and +6 %; v8: +19, +52, +8, +8 %)."""
+    curly +24.6 % at b_l 0.67, at the bound's edge, and +15 % at 1, coily +6 % and +6 %; v8: +19, +52, +8, +8 %)."""
     from hairbrush_env.executor import ExecutorConfig
 
     rows = stroke_study.measure_strokes(

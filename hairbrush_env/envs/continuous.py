@@ -86,6 +86,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     - v6: v0 with the v6 physics of `HairBrush-v6` (v5 with a pair's strands resting apart across the tines).
     - v7: v0 with the v7 physics of `HairBrush-v7` (v6 with smaller curls on the curliest presets).
     - v8: v0 with the v8 physics of `HairBrush-v8` (v7 with tines that hair slides on at its own friction).
+    - v9: v0 with the v9 physics of `HairBrush-v9` (v8 with the drag across the strands only and springy tines).
     """
 
     def __init__(

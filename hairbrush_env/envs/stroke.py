@@ -158,6 +158,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       MuJoCo takes the larger coefficient), so that a curl a tine is pulled through turns round it instead of locking
       on it like a screw whose lead angle is below its friction angle (`hairbrush_env.envs.V8_PHYSICS`). Same spaces,
       rewards and episode rules.
+    - v9 (issue #21): v8 with the strands' drag acting on the velocity across them only
+      (`WigConfig.drag_normal_only`) and the `springy_comb` (a tenth of the tines' hinge damping), so that a 4× faster
+      pull moves the maximum force by ≤ 25 % (Fig. 3.8) (`hairbrush_env.envs.V9_PHYSICS`). Same spaces, rewards and
+      episode rules.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.

@@ -125,8 +125,9 @@ class WigConfig:
         pull slower than it alone (0 = none, the default).
     drag_normal_only : bool
         Let that drag act on the velocity component across each segment only (the cross-flow principle of a
-        slender cylinder's pressure drag), not along it: a curl turning about its own axis to let a tine through, and
-        a strand sliding along itself, then feel no drag (False, the default: on the whole velocity).
+        slender cylinder's pressure drag), not along it: a curl turning about its own axis to let a tine through then
+        feels only ``sin² λ`` of it (λ its lead angle), a strand sliding along itself none (False, the default: on
+        the whole velocity).
     friction : float
         Sliding friction of hair contacts (hair on hair / nylon ≈ 0.2–0.4).
     edges_per_turn : int

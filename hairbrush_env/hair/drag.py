@@ -107,7 +107,7 @@ class StrandDrag:
             t = self.axes(data)
             v = v - np.einsum("ij,ij->i", v, t)[:, None] * t
         speed = np.linalg.norm(v, axis=1)
-        if self.free_speed == 0.0:  # kept as it was: v2-v8 stay bit for bit what they were
+        if self.free_speed == 0.0:  # kept as it was: v2-v8 stay bit for bit what they were (v9 takes it too)
             data.xfrc_applied[self.bodies, :3] = -(self.coefficient * speed)[:, None] * v
             return
         excess = np.maximum(speed - self.free_speed, 0.0)
