@@ -181,8 +181,8 @@ def test_normal_only_needs_a_drag() -> None:
 
 def test_wig_digest_unchanged_by_unset_late_fields() -> None:
     """Cached pre-brushed states stay valid: ``quadratic_damping``, ``drag_density``, ``drag_free_speed``,
-    ``drag_normal_only``, ``root_run`` and ``root_twist_first`` count in the digest only when set (the curly preset's digest before they existed:
-    01ed93b7c0f2bb45)."""
+    ``drag_normal_only``, ``root_run`` and ``root_twist_first`` count in the digest only when set (the curly
+    preset's digest before they existed: 01ed93b7c0f2bb45)."""
     from hairbrush_env import hair
 
     curly = hair.PRESETS["curly"]
