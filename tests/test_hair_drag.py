@@ -14,50 +14,69 @@ from hairbrush_env.hair.drag import StrandDrag
 RHO_HAIR = 1300.0
 
 
+STRAND_RADIUS = 8e-4
+
+
 def _free_rod(
     mass_scale: float, direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
 ) -> tuple[mujoco.MjModel, rods.RodView, rods.RodSpec]:
     pts = rods.straight_rod_points([0.0, 0.0, 1.0], list(direction), 0.1, 10)
     rod = rods.RodSpec(
-        name="r", points=pts, radius=8e-4, young=1e8, density=RHO_HAIR, clamp=None, mass_scale=mass_scale
+        name="r",
+        points=pts,
+        radius=STRAND_RADIUS,
+        young=1e8,
+        density=RHO_HAIR,
+        clamp=None,
+        mass_scale=mass_scale,
     )
     model = rods.build_rod_model([rod])
     return model, rods.RodView(model, "r"), rod
 
 
-@pytest.mark.parametrize("mass_scale", [1.0, 10.0])
-def test_falling_strand_reaches_the_terminal_velocity(mass_scale: float) -> None:
-    """A horizontal strand falling broadside settles at ``v_t = √(2 λ g / (ρ d))`` (λ its real mass per length):
-    the drag balances the real weight, whatever the inertia the mass scaling adds."""
-    model, view, rod = _free_rod(mass_scale)
+def _terminal_speed(rho: float) -> float:
+    """The test strand's broadside terminal speed ``v_t = √(2 λ g / (ρ d))`` (λ its real mass per length)."""
+    lam = RHO_HAIR * math.pi * STRAND_RADIUS**2
+    return math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * STRAND_RADIUS))
+
+
+def _fall(
+    seconds: float,
+    *,
+    mass_scale: float,
+    drag: dict | None,
+    direction: tuple[float, float, float] = (1.0, 0.0, 0.0),
+) -> np.ndarray:
+    """Segment velocities of a free strand (along ``direction``) after falling ``seconds`` from rest under
+    ``StrandDrag(**drag)``, or no drag at all (``None``)."""
+    model, view, _ = _free_rod(mass_scale, direction)
     data = mujoco.MjData(model)
-    rho = 1000.0
-    drag = StrandDrag(model, view.bodies, rho)
+    strand_drag = StrandDrag(model, view.bodies, **drag) if drag is not None else None
     mujoco.mj_forward(model, data)
-    for _ in range(round(0.5 / model.opt.timestep)):
-        drag.apply(data)
+    for _ in range(round(seconds / model.opt.timestep)):
+        if strand_drag is not None:
+            strand_drag.apply(data)
         mujoco.mj_step(model, data)
-    v = drag.velocity(data)
-    lam = RHO_HAIR * math.pi * rod.radius**2
-    v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * rod.radius))
+    return StrandDrag(model, view.bodies, 1.0).velocity(data)
+
+
+@pytest.mark.parametrize(("mass_scale", "normal_only"), [(1.0, False), (10.0, False), (10.0, True)])
+def test_falling_strand_reaches_the_terminal_velocity(mass_scale: float, normal_only: bool) -> None:
+    """A horizontal strand falling broadside settles at ``v_t = √(2 λ g / (ρ d))`` (λ its real mass per length):
+    the drag balances the real weight, whatever the inertia the mass scaling adds. Broadside the whole velocity is
+    normal to the strand, so the cross-flow drag (``normal_only``) settles at the same v_t."""
+    rho = 1000.0
+    v = _fall(0.5, mass_scale=mass_scale, drag={"density": rho, "normal_only": normal_only})
+    v_t = _terminal_speed(rho)
     assert v[:, 2] == pytest.approx(-v_t, rel=0.02)
     assert np.abs(v[:, :2]).max() < 0.01 * v_t
 
 
 def test_falling_strand_with_a_dead_zone_settles_above_it_by_the_terminal_velocity() -> None:
     """With the free speed v₀ the drag is ``½ ρ ℓ d (|v| − v₀)²``, so the broadside fall settles at ``v₀ + v_t``."""
-    model, view, rod = _free_rod(10.0)
-    data = mujoco.MjData(model)
     rho, v0 = 1000.0, 0.2
-    drag = StrandDrag(model, view.bodies, rho, free_speed=v0)
-    mujoco.mj_forward(model, data)
-    for _ in range(round(1.5 / model.opt.timestep)):
-        drag.apply(data)
-        mujoco.mj_step(model, data)
-    v = drag.velocity(data)
-    lam = RHO_HAIR * math.pi * rod.radius**2
-    v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * rod.radius))
-    assert v[:, 2] == pytest.approx(-(v0 + v_t), rel=0.02)
+    v = _fall(1.5, mass_scale=10.0, drag={"density": rho, "free_speed": v0})
+    assert v[:, 2] == pytest.approx(-(v0 + _terminal_speed(rho)), rel=0.02)
 
 
 def test_drag_opposes_the_velocity_with_its_square() -> None:
@@ -97,42 +116,16 @@ def test_cross_flow_drag_leaves_a_strand_falling_end_on_in_free_fall(normal_only
     act on, so it falls as it does without any drag, at g t; the drag of the whole velocity holds it at the
     broadside terminal speed v_t (that drag does not know the strand's orientation)."""
 
-    def fall(drag_of) -> np.ndarray:
-        model, view, _ = _free_rod(1.0, direction=(0.0, 0.0, 1.0))  # real mass: free fall at g
-        data = mujoco.MjData(model)
-        drag = drag_of(model, view.bodies)
-        mujoco.mj_forward(model, data)
-        for _ in range(round(0.3 / model.opt.timestep)):
-            if drag is not None:
-                drag.apply(data)
-            mujoco.mj_step(model, data)
-        return StrandDrag(model, view.bodies, 1.0).velocity(data)[:, 2]
-
-    rho = 1000.0
-    v_z = fall(lambda m, b: StrandDrag(m, b, rho, normal_only=normal_only))
+    rho, end_on = 1000.0, (0.0, 0.0, 1.0)  # real mass: free fall at g
+    v_z = _fall(0.3, mass_scale=1.0, drag={"density": rho, "normal_only": normal_only}, direction=end_on)[
+        :, 2
+    ]
     if normal_only:
-        free = fall(lambda m, b: None)
+        free = _fall(0.3, mass_scale=1.0, drag=None, direction=end_on)[:, 2]
         assert free == pytest.approx(-9.81 * 0.3, rel=0.01)  # g t, read one step late
         np.testing.assert_allclose(v_z, free, rtol=1e-9)
     else:
-        lam = RHO_HAIR * math.pi * 8e-4**2
-        v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * 8e-4))
-        assert v_z == pytest.approx(-v_t, rel=0.02)
-
-
-def test_cross_flow_drag_of_a_falling_broadside_strand_is_the_plain_drag() -> None:
-    """Broadside, the whole velocity is normal to the strand: the cross-flow drag settles at the same v_t."""
-    model, view, rod = _free_rod(10.0)
-    data = mujoco.MjData(model)
-    rho = 1000.0
-    drag = StrandDrag(model, view.bodies, rho, normal_only=True)
-    mujoco.mj_forward(model, data)
-    for _ in range(round(0.5 / model.opt.timestep)):
-        drag.apply(data)
-        mujoco.mj_step(model, data)
-    lam = RHO_HAIR * math.pi * rod.radius**2
-    v_t = math.sqrt(2.0 * lam * 9.81 / (rho * 2.0 * rod.radius))
-    assert drag.velocity(data)[:, 2] == pytest.approx(-v_t, rel=0.02)
+        assert v_z == pytest.approx(-_terminal_speed(rho), rel=0.02)
 
 
 def test_cross_flow_drag_acts_on_the_normal_velocity_only() -> None:

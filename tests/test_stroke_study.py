@@ -103,6 +103,24 @@ def _fig_3_7_grid(physics: str) -> dict[tuple[str, float], float]:
     )
 
 
+def _fig_3_8_table(physics: str) -> dict[tuple[str, float, float], float]:
+    """Mean max force per (wig, b_l, speed) over seeds 0–2 on curly and coily at b_l 0.67 and 1, 0.05 and 0.2 m/s
+    under ``physics`` (Fig. 3.8's grid)."""
+    from hairbrush_env.executor import ExecutorConfig
+
+    rows = stroke_study.measure_strokes(
+        ["curly", "coily"],
+        brush_lengths=[0.67, 1.0],
+        speeds=[0.05, 0.2],
+        seeds=[0, 1, 2],
+        executor=ExecutorConfig(workers=2),
+        progress=False,
+        physics=physics,
+    )
+    assert not any(r["diverged"] for r in rows)
+    return {(e["wig"], e["brush_length"], e["speed"]): e["mean"] for e in stroke_study.summarize(rows)}
+
+
 def _mean_force(rows: list[dict]) -> dict[tuple[str, float], float]:
     assert not any(r["diverged"] for r in rows)
     return {(e["wig"], e["brush_length"]): e["mean"] for e in stroke_study.summarize(rows)}
@@ -289,19 +307,7 @@ def test_fig_3_8_under_v8() -> None:
     0.05,0.2 --seeds 3``): 0.05 → 0.2 m/s moves the mean max force by ≤ 25 % on coily at b_l 0.67 and 1 (measured
     +8 % and +8 %; v6: +72 % and +27 %) and on curly at b_l 0.67 (+19 %). Curly's full stroke moves by +52 % (7.9 →
     12.1 N; docs/detangling.md, *HairBrush-v8*), not asserted here."""
-    from hairbrush_env.executor import ExecutorConfig
-
-    rows = stroke_study.measure_strokes(
-        ["curly", "coily"],
-        brush_lengths=[0.67, 1.0],
-        speeds=[0.05, 0.2],
-        seeds=[0, 1, 2],
-        executor=ExecutorConfig(workers=2),
-        progress=False,
-        physics="v8",
-    )
-    assert not any(r["diverged"] for r in rows)
-    table = {(e["wig"], e["brush_length"], e["speed"]): e["mean"] for e in stroke_study.summarize(rows)}
+    table = _fig_3_8_table("v8")
     for wig, b_l in (("coily", 0.67), ("coily", 1.0), ("curly", 0.67)):
         slow, fast = table[(wig, b_l, 0.05)], table[(wig, b_l, 0.2)]
         assert abs(fast - slow) <= 0.25 * slow, (wig, b_l, slow, fast)
@@ -324,19 +330,7 @@ def test_fig_3_8_under_v9() -> None:
     """Fig. 3.8 under v9 (``hairbrush strokes --physics v9 --wigs curly,coily --brush-lengths 0.67,1 --speeds
     0.05,0.2 --seeds 3``): 0.05 → 0.2 m/s moves the mean max force by ≤ 25 % on both wigs at both lengths (measured
     curly +24.6 % at b_l 0.67, at the bound's edge, and +15 % at 1, coily +6 % and +6 %; v8: +19, +52, +8, +8 %)."""
-    from hairbrush_env.executor import ExecutorConfig
-
-    rows = stroke_study.measure_strokes(
-        ["curly", "coily"],
-        brush_lengths=[0.67, 1.0],
-        speeds=[0.05, 0.2],
-        seeds=[0, 1, 2],
-        executor=ExecutorConfig(workers=2),
-        progress=False,
-        physics="v9",
-    )
-    assert not any(r["diverged"] for r in rows)
-    table = {(e["wig"], e["brush_length"], e["speed"]): e["mean"] for e in stroke_study.summarize(rows)}
+    table = _fig_3_8_table("v9")
     for wig in ("curly", "coily"):
         for b_l in (0.67, 1.0):
             slow, fast = table[(wig, b_l, 0.05)], table[(wig, b_l, 0.2)]
