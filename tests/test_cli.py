@@ -146,6 +146,7 @@ def bad_files(tmp_path_factory):
 # (argv with {d} for the directory of bad_files, text the error line must contain: the flag and the value)
 BAD_INPUT = [
     (["rollout", "--seed", "-1"], ["--seed", "-1"]),
+    (["rollout", "--wig-seed", "-2"], ["--wig-seed", "-2"]),
     (["rollout", "--max-steps", "0"], ["--max-steps", "'0'"]),
     (["rollout", "--max-steps", "-3"], ["--max-steps", "-3"]),
     (["rollout", "--episodes", "0"], ["--episodes", "'0'"]),

@@ -68,7 +68,7 @@ def test_rollout_cli_writes_everything(tmp_path):
     code = main(
         [
             "rollout", "--wig", "straight", "--policy", "full", "--episodes", "1", "--seed", "3", "--quiet",
-            "--max-steps", "2",
+            "--max-steps", "2", "--wig-seed", "1",
             "--rerun", str(out["rrd"]), "--video", str(out["webm"]), "--json", str(out["json"]),
             "--plot", str(out["png"]),
         ]
@@ -77,6 +77,7 @@ def test_rollout_cli_writes_everything(tmp_path):
     data = json.loads(out["json"].read_text())
     (ep,) = data["episodes"]
     assert ep["policy"] == "full" and ep["wig"] == "straight" and ep["strokes"] >= 1
+    assert ep["wig_seed"] == 1  # --wig-seed, not the state seed 3 draws (3)
     first = ep["steps"][0]
     assert len(first["forces"]) >= 10  # a full stroke sampled at 10 Hz
     assert len(first["times"]) == len(first["forces"])

@@ -26,6 +26,8 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
             width=args.width,
             height=args.height,
             **({"max_episode_steps": args.max_steps} if args.max_steps is not None else {}),
+            # one pre-brushed state for every episode: how a compare cell is reproduced with its stroke traces
+            **({"wig_seeds": (args.wig_seed,)} if args.wig_seed is not None else {}),
         )
         policy = make_policy(args.policy, env)
     except ValueError as exc:
@@ -135,6 +137,13 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
     )
     p.add_argument("--episodes", type=count, default=1, help="episodes to run")
     p.add_argument("--seed", type=seed, default=0, help="episode k uses seed S + k")
+    p.add_argument(
+        "--wig-seed",
+        type=seed,
+        default=None,
+        help="start every episode from pre-brushed state W (the wig_seed column of compare's results.csv), "
+        "e.g. to get a compare row's stroke traces (default: the seed draws one of the wig's states)",
+    )
     p.add_argument(
         "--max-steps",
         type=count,
