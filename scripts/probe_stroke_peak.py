@@ -1,12 +1,14 @@
 """Exploration probe: what carries a stroke's maximum — which strands the tines hold there, on which edges, and how far
 below their rest free ends those strands have been dragged (docs/detangling.md, *HairBrush-v9*).
 
-    python scripts/probe_stroke_peak.py WIG B_L SEEDS [--physics vN]     # e.g. curly 0.33 0,1,2 --physics v9
+    python scripts/probe_stroke_peak.py WIG B_L SEEDS [--physics vN] [--climb B1,B2,...]   # e.g. curly 0.33 0,1,2
 
-One stroke per seed from the pre-brushed wig, no abort. At each 10 Hz load-cell sample it sums the normal contact force
-of the tines on every strand; at the sample of the maximum it prints the tines' depth below the roots, the four
-strands they press hardest (force, edges touched counted from the root, free end and lowest point against the
-strand's rest ones) and how many strands the tines touch; then the force profile over the pull (depth: N).
+One stroke per seed from the pre-brushed wig, no abort (with ``--climb``, after strokes from those b_l first, e.g. a
+sigmoid episode's ``brush_length``s from ``hairbrush rollout --json``; "rest" is then the wig before the climb). At
+each 10 Hz load-cell sample it sums the normal contact force of the tines on every strand; at the sample of the
+maximum it prints the tines' depth below the roots, the four strands they press hardest (force, edges touched counted
+from the root, free end and lowest point against the strand's rest ones) and how many strands the tines touch; then
+the force profile over the pull (depth: N).
 """
 
 import argparse
@@ -26,6 +28,7 @@ parser.add_argument("wig", choices=list(hair.PRESETS))
 parser.add_argument("b_l", type=float)
 parser.add_argument("seeds", help="comma-separated seeds")
 parser.add_argument("--physics", choices=list(PHYSICS), default="v9")
+parser.add_argument("--climb", default="", help="comma-separated b_l of strokes brushed first (no abort)")
 args = parser.parse_args()
 
 sim = BrushingSim(get_physics(args.physics).scene_config(args.wig))
@@ -44,6 +47,13 @@ for seed in (int(s) for s in args.seeds.split(",")):
     rest = sim.hair_curve_array()
     rest_end, rest_low = rest[:, -1, 2], rest[..., 2].min(axis=1)
     roots_z = float(rest[:, 0, 2].max())
+    climb = [sim.stroke(float(b), abort_force=None).max_force for b in args.climb.split(",") if b]
+    if climb:
+        print(
+            f"climb ({len(climb)} strokes):",
+            " ".join(f"{f:.1f}" for f in climb),
+            f"N; entanglement {sim.entanglement():.2f}",
+        )
     samples = []
 
     def observe(s: BrushingSim, sample, samples: list = samples) -> None:
