@@ -8,7 +8,7 @@ sigmoid episode's ``brush_length``s from ``hairbrush rollout --json``; "rest" is
 each 10 Hz load-cell sample it sums the normal contact force of the tines on every strand; at the sample of the
 maximum it prints the tines' depth below the roots, the four strands they press hardest (force, edges touched counted
 from the root, free end and lowest point against the strand's rest ones) and how many strands the tines touch; then
-the force profile over the pull (depth: N).
+the force profile over the pull (depth: N) and the maximum read while the brush is above the bottom of the hair.
 """
 
 import argparse
@@ -95,3 +95,6 @@ for seed in (int(s) for s in args.seeds.split(",")):
         "  profile (mm below the roots: N):",
         " ".join(f"{1000 * (roots_z - x[1]):.0f}: {x[0]:.1f}" for x in samples[::3]),
     )
+    # Algorithm 1 collects its f only while the brush is above the bottom of the hair (the lowest rest free end)
+    inside = [x[0] for x in samples if x[1] >= sim.hair_bottom]
+    print(f"  max while the brush is above the bottom of the hair: {max(inside, default=0.0):.2f} N")
