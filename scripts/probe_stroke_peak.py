@@ -9,6 +9,7 @@ each 10 Hz load-cell sample it sums the normal contact force of the tines on eve
 maximum it prints the tines' depth below the roots, the four strands they press hardest (force, edges touched counted
 from the root, free end and lowest point against the strand's rest ones) and how many strands the tines touch; then
 the force profile over the pull (depth: N) and the maximum read while the brush is above the bottom of the hair.
+Only samples with the comb at its brushing depth count (the pull, not the approach or the backing out).
 """
 
 import argparse
@@ -22,6 +23,8 @@ from hairbrush_env import hair
 from hairbrush_env.physics import PHYSICS, get_physics
 from hairbrush_env.scene import BrushingSim
 from hairbrush_env.scene_build import SCENE_TINE_PREFIX
+
+_AT_DEPTH = 0.003  # [m] how near its brushing depth the comb counts as pulling
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("wig", choices=list(hair.PRESETS))
@@ -71,7 +74,9 @@ for seed in (int(s) for s in args.seeds.split(",")):
             per[strand] += f6[0]
             edges[strand].add(edge)
         curves = s.hair_curve_array()
-        samples.append((sample.brushing_force(), float(s.brush_position()[2]), per, edges, curves))
+        tcp = s.brush_position()
+        if abs(float(tcp[0]) - s.depth_x) < _AT_DEPTH:  # the pull: not the approach, insertion or backing out
+            samples.append((sample.brushing_force(), float(tcp[2]), per, edges, curves))
 
     sim.add_observer(observe)
     res = sim.stroke(args.b_l, abort_force=None)
