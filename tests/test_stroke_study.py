@@ -282,6 +282,21 @@ def test_fig_3_7_under_v8_reduced() -> None:
     assert t[("tight_curl", 1.0)] > PAIN_THRESHOLD, t
 
 
+def _assert_fig_3_7_order(t: dict, *, curly_short_below: float) -> None:
+    """Figs 3.6(ii)/3.7 as v8 and v9 meet them: at b_l = 1 the force grows with curliness, straight well below F_T
+    and the curliest above it; every curled preset's force grows with b_l but curly's, whose short strokes both stay
+    below ``curly_short_below`` of its full stroke."""
+    from hairbrush_env.hair import PRESETS
+    from hairbrush_env.scene import PAIN_THRESHOLD
+
+    full = np.array([t[(name, 1.0)] for name in PRESETS])
+    assert np.all(np.diff(full) > 0), full
+    assert full[0] < 0.5 and full[-1] > PAIN_THRESHOLD, full
+    for name in ("wavy", "loose_curl", "tight_curl", "coily"):
+        assert t[(name, 0.33)] < t[(name, 0.67)] < t[(name, 1.0)], name
+    assert max(t[("curly", 0.33)], t[("curly", 0.67)]) < curly_short_below * t[("curly", 1.0)]
+
+
 @pytest.mark.slow
 def test_fig_3_7_under_v8() -> None:
     """Figs 3.6(ii) and 3.7 under v8, mean max force over seeds 0–2, no abort (``hairbrush strokes --physics v8
@@ -289,16 +304,7 @@ def test_fig_3_7_under_v8() -> None:
     3.52 < 5.81 < 9.74 < 11.93 < 14.28 N), straight stays well below F_T and the curliest full stroke reads above it;
     every curled preset's force grows with b_l except curly's, whose b_l 0.33 reads a little more than its 0.67
     (3.41 against 3.02 N; docs/detangling.md, *HairBrush-v8*)."""
-    from hairbrush_env.hair import PRESETS
-    from hairbrush_env.scene import PAIN_THRESHOLD
-
-    t = _fig_3_7_grid("v8")
-    full = np.array([t[(name, 1.0)] for name in PRESETS])
-    assert np.all(np.diff(full) > 0), full
-    assert full[0] < 0.5 and full[-1] > PAIN_THRESHOLD, full
-    for name in ("wavy", "loose_curl", "tight_curl", "coily"):
-        assert t[(name, 0.33)] < t[(name, 0.67)] < t[(name, 1.0)], name
-    assert max(t[("curly", 0.33)], t[("curly", 0.67)]) < 0.4 * t[("curly", 1.0)]
+    _assert_fig_3_7_order(_fig_3_7_grid("v8"), curly_short_below=0.4)
 
 
 @pytest.mark.slow
@@ -344,13 +350,4 @@ def test_fig_3_7_under_v9() -> None:
     < 14.19 N), straight stays well below F_T and the curliest full stroke reads above it; every curled preset's force
     grows with b_l but curly's, whose b_l 0.33 reads more than its 0.67 (3.85 against 3.05 N: both maxima are the
     strands' ends released from the tines far below their rest, docs/detangling.md, *HairBrush-v9*)."""
-    from hairbrush_env.hair import PRESETS
-    from hairbrush_env.scene import PAIN_THRESHOLD
-
-    t = _fig_3_7_grid("v9")
-    full = np.array([t[(name, 1.0)] for name in PRESETS])
-    assert np.all(np.diff(full) > 0), full
-    assert full[0] < 0.5 and full[-1] > PAIN_THRESHOLD, full
-    for name in ("wavy", "loose_curl", "tight_curl", "coily"):
-        assert t[(name, 0.33)] < t[(name, 0.67)] < t[(name, 1.0)], name
-    assert max(t[("curly", 0.33)], t[("curly", 0.67)]) < 0.45 * t[("curly", 1.0)]
+    _assert_fig_3_7_order(_fig_3_7_grid("v9"), curly_short_below=0.45)

@@ -220,6 +220,11 @@ def _six_strokes_under(version: str, wig: str, seed: int) -> list[dict]:
     return repeated_strokes(BrushingSim(get_physics(version).scene_config(wig)), seed=seed, n_strokes=6)
 
 
+def _series_under(version: str, wigs: tuple[str, ...]) -> dict[tuple[str, int], list[dict]]:
+    """Fig. 3.6(i)'s series under ``version``: six full strokes on each of ``wigs``, seeds 0–2."""
+    return {(w, s): _six_strokes_under(version, w, s) for w in wigs for s in (0, 1, 2)}
+
+
 def _assert_two_strokes_comb_out(
     version: str, wig: str, *, first_at_least: float, second_below: float, left_at_most: float
 ) -> None:
@@ -237,7 +242,7 @@ def _assert_two_strokes_comb_out(
 
 @pytest.fixture(scope="module")
 def six_strokes_v2() -> dict[tuple[str, int], list[dict]]:
-    return {(w, s): _six_strokes_under("v2", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
+    return _series_under("v2", ("curly", "coily"))
 
 
 @pytest.mark.slow
@@ -290,7 +295,7 @@ def test_fig_3_6_curly_under_v3_reduced():
 
 @pytest.fixture(scope="module")
 def six_strokes_v3() -> dict[tuple[str, int], list[dict]]:
-    return {(w, s): _six_strokes_under("v3", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
+    return _series_under("v3", ("curly", "coily"))
 
 
 @pytest.mark.slow
@@ -318,7 +323,7 @@ def test_fig_3_6_curly_under_v5_reduced():
 
 @pytest.fixture(scope="module")
 def six_strokes_v5() -> dict[tuple[str, int], list[dict]]:
-    return {(w, s): _six_strokes_under("v5", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
+    return _series_under("v5", ("curly", "coily"))
 
 
 @pytest.mark.slow
@@ -360,7 +365,7 @@ def test_fig_3_6_coily_under_v6_reduced():
 
 @pytest.fixture(scope="module")
 def six_strokes_v6() -> dict[tuple[str, int], list[dict]]:
-    return {(w, s): _six_strokes_under("v6", w, s) for w in ("curly", "coily") for s in (0, 1, 2)}
+    return _series_under("v6", ("curly", "coily"))
 
 
 @pytest.mark.slow
@@ -386,7 +391,7 @@ def test_fig_3_6_coily_under_v7_reduced():
 
 @pytest.fixture(scope="module")
 def six_strokes_v7() -> dict[tuple[str, int], list[dict]]:
-    return {(w, s): _six_strokes_under("v7", w, s) for w in ("coily", "tight_curl") for s in (0, 1, 2)}
+    return _series_under("v7", ("coily", "tight_curl"))
 
 
 @pytest.mark.slow
@@ -411,9 +416,7 @@ def test_fig_3_6_tight_curl_under_v8_reduced():
 
 @pytest.fixture(scope="module")
 def six_strokes_v8() -> dict[tuple[str, int], list[dict]]:
-    return {
-        (w, s): _six_strokes_under("v8", w, s) for w in ("curly", "tight_curl", "coily") for s in (0, 1, 2)
-    }
+    return _series_under("v8", ("curly", "tight_curl", "coily"))
 
 
 @pytest.mark.slow
@@ -428,9 +431,7 @@ def test_fig_3_6_under_v8_physics(six_strokes_v8):
 
 @pytest.fixture(scope="module")
 def six_strokes_v9() -> dict[tuple[str, int], list[dict]]:
-    return {
-        (w, s): _six_strokes_under("v9", w, s) for w in ("curly", "tight_curl", "coily") for s in (0, 1, 2)
-    }
+    return _series_under("v9", ("curly", "tight_curl", "coily"))
 
 
 @pytest.mark.slow
