@@ -29,6 +29,7 @@ COLUMNS = [
     "seed",
     "wig_seed",
     "max_force",
+    "pull_max_force",
     "sim_time",
     "strokes",
     "pain_violations",
@@ -57,6 +58,8 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
     for row in rows:
         value = row.get("abort_force", "")
         row["abort_force"] = float(value) if value not in ("", "None", None) else None
+        value = row.get("pull_max_force", "")  # absent from grids run before v10 read part of a pull
+        row["pull_max_force"] = float(value) if value not in ("", "None", None) else row["max_force"]
         value = row.get("wig_seed", "")  # absent from grids run before episodes were given distinct wigs
         row["wig_seed"] = int(value) if value not in ("", "None", None) else None
     return rows
@@ -189,7 +192,15 @@ def _sorted(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
 
 
 #: Columns of the summary, each as mean ± std over a cell's episodes (the RL issue's comparison table).
-SUMMARY_KEYS = ("total_reward", "max_force", "sim_time", "strokes", "pain_violations", "entanglement_final")
+SUMMARY_KEYS = (
+    "total_reward",
+    "max_force",
+    "pull_max_force",
+    "sim_time",
+    "strokes",
+    "pain_violations",
+    "entanglement_final",
+)
 
 
 def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
@@ -210,9 +221,9 @@ def summarize(rows: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
 
 def summary_markdown(rows: Sequence[dict[str, Any]]) -> str:
     lines = [
-        "| wig | R/P | policy | n | return | max force [N] | time [s] | strokes | pain violations "
-        "| final entanglement |",
-        "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|",
+        "| wig | R/P | policy | n | return | max force [N] | max of the pulls [N] | time [s] | strokes "
+        "| pain violations | final entanglement |",
+        "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for e in summarize(rows):
         cells = [f"{m:.2f} ± {s:.2f}" for m, s in (e[k] for k in SUMMARY_KEYS)]

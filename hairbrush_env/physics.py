@@ -1,4 +1,4 @@
-"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v9`` and the studies' ``--physics`` set.
+"""Versions of the brushing physics: what ``HairBrush-v1`` … ``-v10`` and the studies' ``--physics`` set.
 
 A change of the brushing physics is released as a new version instead of a change of the defaults, so an agent
 trained on ``HairBrush-v0`` (the RL reference run, docs/rl.md) is evaluated on the physics it was trained on, and
@@ -59,6 +59,12 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   at a 4× faster pull; its wire then moves nearly along itself, so v8's drag of the whole velocity braked it
   (sin³ λ of that under v9's: 0.028 on curly), and the tines' damping read the faster give as force. Under v8 curly's
   full stroke moved +52 % for 0.05 → 0.2 m/s (Fig. 3.8); under v9 +15 % (docs/detangling.md, *HairBrush-v9*).
+- ``v10``: v9 whose strokes read the load cell as thesis Algorithm 1 does, only while the brush is above the bottom
+  of the hair (``SceneConfig.read_in_hair``); the abort and a stroke's ``max_force`` see those samples, the pull
+  goes on as under v9 and pain is counted over all of it. The hair and the brush are v9's. Under v9 a short stroke
+  read the force of the few strands it had hooked and dragged 7–11 cm below their rest free ends, after it had left
+  the hair: curly's b_l = 0.33 strokes read 3.5–4.2 N there and 0.56–0.69 N in the hair (docs/detangling.md,
+  *HairBrush-v10*).
 """
 
 from __future__ import annotations
@@ -81,6 +87,9 @@ class PhysicsVersion:
     #: WigConfig fields set on the named presets only (after ``wig_fields``): how a version re-sizes a preset's
     #: curls. A wig given by name, or as a config equal to that preset, gets them; any other config is used as given.
     preset_fields: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
+    #: SceneConfig fields the version sets on every scene: how its strokes are run and read (v10's
+    #: ``read_in_hair``).
+    scene_fields: Mapping[str, Any] = field(default_factory=dict)
     #: What the version changes, in a few words (the CLI's help texts).
     summary: str = ""
 
@@ -93,6 +102,8 @@ class PhysicsVersion:
             out["wig_fields"] = dict(self.wig_fields)
         if self.preset_fields:
             out["preset_fields"] = {name: dict(f) for name, f in self.preset_fields.items()}
+        if self.scene_fields:
+            out["scene_fields"] = dict(self.scene_fields)
         return out
 
     def wig(self, wig: Any):
@@ -112,7 +123,7 @@ class PhysicsVersion:
         """A :class:`~hairbrush_env.scene.SceneConfig` brushing ``wig`` under this version."""
         from .scene_build import SceneConfig
 
-        return SceneConfig(wig=self.wig(wig), brush=self.brush, **fields)
+        return SceneConfig(wig=self.wig(wig), brush=self.brush, **{**self.scene_fields, **fields})
 
 
 # Each version's wig fields are the one before's plus what it changes.
@@ -202,6 +213,15 @@ PHYSICS: Mapping[str, PhysicsVersion] = {
         preset_fields=_V7_PRESET_FIELDS,
         summary="v8 with the strands' drag on the velocity across them only (a curl turning round a tine feels "
         "a fraction of it) and tines that spring back (a tenth of the hinge damping)",
+    ),
+    "v10": PhysicsVersion(
+        "v10",
+        brush="springy_comb",
+        wig_fields={**_V6_WIG_FIELDS, "drag_normal_only": True},
+        preset_fields=_V7_PRESET_FIELDS,
+        scene_fields={"read_in_hair": True},
+        summary="v9 with strokes that read the load cell only while the brush is above the bottom of the hair "
+        "(Algorithm 1); the pull and pain counts are v9's",
     ),
 }
 

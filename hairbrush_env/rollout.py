@@ -26,6 +26,8 @@ class StepLog:
     reward: float
     brush_length: float | None = None
     aborted: bool = False
+    #: Largest sample of the whole step; ``max_force`` is the largest the stroke read (``info["samples_read"]``).
+    pull_max_force: float = 0.0
 
 
 @dataclass
@@ -51,6 +53,12 @@ class EpisodeLog:
         return max((s.max_force for s in self.steps), default=0.0)
 
     @property
+    def pull_max_force(self) -> float:
+        """Largest force sample of any stroke's whole pull (what pain is counted on; ``max_force``: what the strokes
+        read, which a version with ``read_in_hair`` limits to the brush in the hair)."""
+        return max((s.pull_max_force for s in self.steps), default=0.0)
+
+    @property
     def final_entanglement(self) -> float:
         return self.steps[-1].entanglement if self.steps else self.entanglement_initial
 
@@ -65,6 +73,7 @@ class EpisodeLog:
             "abort_force": self.abort_force,
             "wig_seed": self.wig_seed,
             "max_force": self.max_force,
+            "pull_max_force": self.pull_max_force,
             "sim_time": round(self.sim_time, 3),
             "strokes": len(self.steps),
             "pain_violations": self.pain_violations,
@@ -116,16 +125,20 @@ def run_episode(
         t_start = float(info.get("sim_time", 0.0))
         obs, reward, terminated, truncated, info = env.step(policy.act(obs))
         forces = [float(f) for f in info.get("force_samples", ())]
+        read = int(
+            info.get("samples_read", len(forces))
+        )  # what the stroke read (HairBrush-v10: the brush in the hair)
         step = StepLog(
             index=len(log.steps),
             t_start=t_start,
             forces=forces,
             times=[float(t) for t in info.get("force_times", ())],
-            max_force=float(max(forces, default=0.0)),
+            max_force=float(max(forces[:read], default=0.0)),
             entanglement=float(info["entanglement"]),
             reward=float(reward),
             brush_length=info.get("brush_length"),
             aborted=bool(info.get("aborted", False)),
+            pull_max_force=float(max(forces, default=0.0)),
         )
         log.steps.append(step)
         log.total_reward += float(reward)

@@ -89,7 +89,8 @@ class StrokeResult:
         ``(times, forces)`` of the 10 Hz load-cell samples during the pull (time from the start of the pull [s],
         brushing force [N], positive = hair resisting).
     max_force : float
-        Largest sampled brushing force (0 if no sample).
+        Largest brushing force the stroke read (0 if none): every sample of the pull, or with
+        ``SceneConfig.read_in_hair`` the first ``samples_read``, taken while the brush was above the bottom of the hair.
     aborted : bool
         A sample reached ``abort_force`` and the stroke was stopped.
     sim_time : float
@@ -100,6 +101,10 @@ class StrokeResult:
         World z of the TCP at the start of the pull.
     start_fraction : float
         Requested normalized start height ``b_l``.
+    pull_max_force : float
+        Largest sample of the whole pull (equal to ``max_force`` unless the stroke read only part of it).
+    samples_read : int
+        How many of the trace's samples (from its start) the stroke read for ``max_force`` and the abort.
     """
 
     force_trace: tuple[np.ndarray, np.ndarray]
@@ -109,6 +114,8 @@ class StrokeResult:
     diverged: bool
     start_height: float
     start_fraction: float
+    pull_max_force: float = 0.0
+    samples_read: int = 0
 
 
 @dataclass(frozen=True)
@@ -587,16 +594,18 @@ class BrushingSim:
         free = self.config.free_speed
         empty = (np.zeros(0), np.zeros(0))
 
-        def result(trace: tuple[np.ndarray, np.ndarray], aborted: bool) -> StrokeResult:
+        def result(trace: tuple[np.ndarray, np.ndarray], aborted: bool, n_read: int) -> StrokeResult:
             forces = trace[1]
             return StrokeResult(
                 force_trace=trace,
-                max_force=float(forces.max()) if forces.size else 0.0,
+                max_force=float(forces[:n_read].max()) if n_read else 0.0,
                 aborted=aborted,
                 sim_time=float(self.data.time) - t0,
                 diverged=self.diverged,
                 start_height=z_start,
                 start_fraction=float(start_fraction),
+                pull_max_force=float(forces.max()) if forces.size else 0.0,
+                samples_read=n_read,
             )
 
         # Free-space approach: out to the retract plane, to the start height, settle, tare. The plane clears the
@@ -610,11 +619,11 @@ class BrushingSim:
         for _ in range(round(0.1 / self.config.control_dt)):
             ok = ok and self._tick(self._target, None, None)
         if not ok:
-            return result(empty, False)
+            return result(empty, False, 0)
         self.load_cell.tare(self.data)
         # Insertion to depth, then the pull.
         if not self._move(np.array([self.depth_x, y, z_start]), fast):
-            return result(empty, False)
+            return result(empty, False, 0)
         self.load_cell.reset(self.data)
         samples: list = []
         end = np.array([self.depth_x, y, z_end])
@@ -622,13 +631,23 @@ class BrushingSim:
         vel = np.array([0.0, 0.0, -speed])
         aborted = cleared = False
         t_pull = float(self.data.time)
+        # Algorithm 1 reads the load cell while the brush is above the bottom of the hair (SceneConfig.read_in_hair):
+        # the samples of the pull up to the tick that takes the TCP below the rest free ends of the last reset.
+        reading = True
+        n_read = 0
         for p in path[1:]:
             n_before = len(samples)
             if not self._tick(p, vel, samples):
+                if reading:
+                    n_read = len(samples)
                 break
-            if any(s.brushing_force() >= abort_at for s in samples[n_before:]):
-                aborted = True
-                break
+            if reading:
+                n_read = len(samples)
+                if any(s.brushing_force() >= abort_at for s in samples[n_before:]):
+                    aborted = True
+                    break
+                if self.config.read_in_hair and self.brush_position()[2] < self.hair_bottom:
+                    reading = False
             if self._last_curves is not None and float(self._last_curves[..., 2].min()) > p[2] + clear:
                 cleared = True  # the whole brush is below every strand
                 break
@@ -639,7 +658,7 @@ class BrushingSim:
         if not self.diverged:
             # below every strand the way out is free space; an aborted stroke backs out through the hair
             self._move(np.array([retract_x, y, self._target[2]]), free if cleared else fast)
-        return result(trace, aborted)
+        return result(trace, aborted, n_read)
 
     def step_velocity(self, v_z: float, v_depth: float, dt: float = 0.1) -> VelocityStep:
         """Move the TCP target with ``(v_depth, 0, v_z)`` [m/s] for ``dt`` seconds (velocity-level control).

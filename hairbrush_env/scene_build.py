@@ -122,6 +122,14 @@ class SceneConfig:
         with the comb's plate the tines enter 8 mm below the roots; link above the highest tine is never combed
         (starting 12 mm below the roots left twice the link after a stroke). The soft paddle brush needs ~9 mm:
         closer starts bent the stiff wisps sharply around its bristles at the clamp.
+    read_in_hair : bool
+        ``True``: a stroke reads the load cell as thesis Algorithm 1 does, only while the brush is above the bottom
+        of the hair (the TCP at or above the rest free ends of the last reset, the fixed point the thesis's rig keeps
+        the free ends at): the abort and ``StrokeResult.max_force`` see those samples only. The pull itself goes on
+        as before, and ``StrokeResult.pull_max_force`` keeps the largest sample of the whole pull, which pain counts
+        use. ``False`` (default): every sample of the pull is read. Below the rest free ends the tines hold only
+        strands they have hooked and dragged down (a short stroke through tight_curl read its maximum 110 mm below
+        them); the thesis's robot had stopped reading by then (docs/detangling.md, *HairBrush-v10*).
     """
 
     wig: str | hairmod.WigConfig = hairmod.DEFAULT_WIG
@@ -147,6 +155,7 @@ class SceneConfig:
     scalp_clearance: float = 0.005
     pull_floor_z: float | None = 0.40
     max_step_travel: float | None = None
+    read_in_hair: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
@@ -188,6 +197,8 @@ class SceneConfig:
             raise ValueError(
                 f"SceneConfig.pull_floor_z must be in [{_PULL_FLOOR_MIN}, free_end_z), got {self.pull_floor_z!r}"
             )
+        if not isinstance(self.read_in_hair, bool):
+            raise ValueError(f"SceneConfig.read_in_hair must be True or False, got {self.read_in_hair!r}")
         if not (math.isfinite(self.brush_depth) and abs(self.brush_depth) <= 0.03):
             raise ValueError(f"SceneConfig.brush_depth must be within ±0.03 m, got {self.brush_depth!r}")
 

@@ -24,17 +24,32 @@ import numpy as np
 from .executor import CellLog, CellOutcome, CellsFailed, ExecutorConfig, run_cells
 from .io import read_csv_rows, write_csv_rows, write_text
 
-COLUMNS = ["wig", "R_over_P", "brush_length", "speed", "seed", "max_force", "sim_time", "diverged"]
+COLUMNS = [
+    "wig",
+    "R_over_P",
+    "brush_length",
+    "speed",
+    "seed",
+    "max_force",
+    "sim_time",
+    "diverged",
+    "pull_max_force",
+]
 
 
 def read_strokes(path: str | Path) -> list[dict[str, Any]]:
-    """Rows of a ``strokes.csv`` with numeric columns converted."""
-    return read_csv_rows(
+    """Rows of a ``strokes.csv`` with numeric columns converted (``pull_max_force``, absent from files written before
+    v10 read part of a pull, is then ``max_force``: the whole pull was read)."""
+    rows = read_csv_rows(
         path,
         floats=("R_over_P", "brush_length", "speed", "max_force", "sim_time"),
         ints=("seed",),
         bools=("diverged",),
     )
+    for row in rows:
+        value = row.get("pull_max_force", "")
+        row["pull_max_force"] = float(value) if value not in ("", None) else row["max_force"]
+    return rows
 
 
 def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[float]:
@@ -72,6 +87,7 @@ def stroke_cell(wig: str, b_l: float, speed: float, seed: int, physics: str = "v
         "speed": speed,
         "seed": seed,
         "max_force": res.max_force,
+        "pull_max_force": res.pull_max_force,
         "sim_time": res.sim_time,
         "diverged": res.diverged,
     }

@@ -24,6 +24,7 @@ def _row(wig: str, policy: str, episode: int, max_force: float, curliness: float
         "seed": episode,
         "wig_seed": episode % 4,
         "max_force": max_force,
+        "pull_max_force": max_force + 1.0,
         "sim_time": 10.0 + episode,
         "strokes": 3 + episode,
         "pain_violations": int(max_force >= 10.0),
@@ -66,7 +67,11 @@ def test_summary_mean_and_std() -> None:
     assert curly["max_force"][1] == pytest.approx(np.std([12.0, 8.0, 10.0], ddof=1))
     assert curly["pain_violations"][0] == pytest.approx(2 / 3)
     assert curly["total_reward"] == (pytest.approx(-0.25), pytest.approx(0.0))
-    assert "| curly | 0.50 | naive | 3 | -0.25 ± 0.00 | 10.00 ± 2.00 |" in compare.summary_markdown(rows)
+    assert curly["pull_max_force"][0] == pytest.approx(11.0)
+    assert (
+        "| curly | 0.50 | naive | 3 | -0.25 ± 0.00 | 10.00 ± 2.00 | 11.00 ± 2.00 |"
+        in compare.summary_markdown(rows)
+    )
 
 
 def test_bad_episode_count(tmp_path) -> None:

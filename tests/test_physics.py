@@ -32,7 +32,7 @@ def test_v0_is_the_defaults_and_v1_sets_contact_and_brush() -> None:
     assert (w.name, w.length, w.self_collision, w.friction) == ("mine", 0.2, True, 0.15)
     assert v1.scene_config("curly").brush == get_brush("soft_comb")
     assert ENV_IDS["HairBrush-v1"][2] == V1_PHYSICS == v1.env_kwargs()
-    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8", "v9"}
+    assert set(PHYSICS) == {"v0", "v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8", "v9", "v10"}
 
 
 def test_v2_is_v1_with_drag_instead_of_most_of_the_damping() -> None:
@@ -258,6 +258,31 @@ def test_v9_is_v8_with_the_cross_flow_drag_and_springy_tines() -> None:
         assert v9.wig(name) == v8.wig(name).replace(drag_normal_only=True), name
 
 
+def test_v10_is_v9_reading_the_load_cell_in_the_hair_only() -> None:
+    """v10 keeps v9's wigs, curls and comb and changes how its strokes are read (``SceneConfig.read_in_hair``): the
+    envs of both ids get it as a scene field, and a version's scene config carries it."""
+    from hairbrush_env.envs import V10_PHYSICS
+    from hairbrush_env.hair import PRESETS
+
+    v9, v10 = get_physics("v9"), get_physics("v10")
+    assert (v10.brush, dict(v10.wig_fields), dict(v10.preset_fields)) == (
+        v9.brush,
+        dict(v9.wig_fields),
+        dict(v9.preset_fields),
+    )
+    assert v10.env_kwargs() == {**v9.env_kwargs(), "scene_fields": {"read_in_hair": True}}
+    assert (
+        ENV_IDS["HairBrush-v10"][2]
+        == ENV_IDS["HairBrushContinuous-v10"][2]
+        == V10_PHYSICS
+        == v10.env_kwargs()
+    )
+    assert v10.scene_config("curly").read_in_hair and not v9.scene_config("curly").read_in_hair
+    assert v10.scene_config("curly", read_in_hair=False) == v9.scene_config("curly")
+    for name in (*PRESETS, "held_out_curly", "held_out_tight"):
+        assert v10.wig(name) == v9.wig(name), name
+
+
 def _parted_after_insertion(version: str, wig: str, seed: int, b_l: float) -> int:
     """How many entwined pairs have a tine between their strands at the first physics step of the pull."""
     from hairbrush_env.scene import BrushingSim
@@ -296,8 +321,8 @@ def test_a_wig_v3_cannot_build_names_the_version() -> None:
 
 
 def test_unknown_version_is_refused() -> None:
-    with pytest.raises(ValueError, match="physics: unknown version 'v10'; valid: v0, v1, v2, v3"):
-        get_physics("v10")
+    with pytest.raises(ValueError, match="physics: unknown version 'v11'; valid: v0, v1, v2, v3"):
+        get_physics("v11")
 
 
 def test_a_study_directory_keeps_one_version(tmp_path) -> None:

@@ -42,6 +42,21 @@ def test_run_episode_full_policy_runs_to_an_end():
     assert log.sim_time > 0 and log.total_reward == pytest.approx(sum(s.reward for s in log.steps))
 
 
+def test_episode_log_keeps_what_the_strokes_read_and_the_pulls_maxima():
+    """Under ``HairBrush-v10`` a stroke reads only its first ``samples_read`` samples: the log's ``max_force`` is
+    their largest, ``pull_max_force`` the whole pull's."""
+    env = gym.make("HairBrush-v10", wig=SMALL_CURLY, max_episode_steps=2)
+    log = run_episode(env, make_policy("naive", env), episode=0, seed=0, policy_name="naive")
+    env.close()
+    assert log.steps and not log.diverged
+    for s in log.steps:
+        assert s.max_force <= s.pull_max_force == pytest.approx(max(s.forces))
+    assert any(s.max_force < s.pull_max_force for s in log.steps)
+    summary = log.summary()
+    assert summary["max_force"] == pytest.approx(max(s.max_force for s in log.steps))
+    assert summary["pull_max_force"] == pytest.approx(max(s.pull_max_force for s in log.steps))
+
+
 def test_rollout_applies_the_abort_each_policy_declares():
     """Naive and full strokes pull through, the closed loop stops at F_T, a policy that declares nothing gets the
     env's own abort; the episode log says which abort ran."""

@@ -43,6 +43,7 @@ def sim() -> scene.BrushingSim:
         ({"free_speed": 0.0}, "free_speed"),
         ({"stroke_speed": 0.0}, "stroke_speed"),
         ({"max_step_travel": 0.0}, "max_step_travel"),
+        ({"read_in_hair": 1}, "read_in_hair"),
     ],
 )
 def test_bad_scene_config_names_field(changes: dict, field: str) -> None:
@@ -159,6 +160,31 @@ def test_short_stroke_samples_at_10hz(sim: scene.BrushingSim) -> None:
     assert sim.start_height(1.0) == pytest.approx(sim.top_z) and sim.brushable_length < sim.hanging_length
     with pytest.raises(ValueError, match="start_fraction"):
         sim.stroke(1.5)
+
+
+def test_read_in_hair_reads_the_pull_above_the_rest_free_ends_only() -> None:
+    """``SceneConfig.read_in_hair`` (v10): the stroke reads the load cell, for its abort and ``max_force``, only while
+    the brush is above the bottom of the hair, as thesis Algorithm 1 does; the pull goes on. Curly's b_l = 0.33
+    stroke, seed 0, reads 0.58 N there and 3.86 N at the end of its pull, where the tines drag hooked strands far
+    below their rest free ends: an abort at 1.5 N, which the whole pull would trip, does not stop it."""
+    from hairbrush_env.physics import get_physics
+
+    sim = scene.BrushingSim(get_physics("v10").scene_config("curly"))
+    sim.reset(0)
+    seen: list[tuple[float, float]] = []  # (brushing force, TCP height) at every load-cell sample
+    sim.add_observer(lambda s, sample: seen.append((sample.brushing_force(), float(s.brush_position()[2]))))
+    res = sim.stroke(0.33, abort_force=1.5, rng=np.random.default_rng(1))
+    _, f = res.force_trace
+    n = res.samples_read
+    assert not res.diverged and not res.aborted
+    assert 0 < n < f.size and res.max_force == pytest.approx(f[:n].max()) and res.max_force < 1.5
+    assert res.pull_max_force == pytest.approx(f.max()) and res.pull_max_force >= 1.5
+    # the pull's samples among all the load cell took (approach, insertion, pull, backing out): the run equal to f
+    forces = np.array([x[0] for x in seen])
+    k = next(k for k in range(forces.size - f.size + 1) if np.array_equal(forces[k : k + f.size], f))
+    z = np.array([x[1] for x in seen[k : k + f.size]])
+    # read while the brush is above the rest free ends (checked once per 1 mm control period), none below
+    assert np.all(z[:n] >= sim.hair_bottom - 0.0015) and np.all(z[n:] < sim.hair_bottom)
 
 
 def test_tool_box_is_tight_around_the_bristles(sim: scene.BrushingSim) -> None:

@@ -12,6 +12,7 @@
 - ``HairBrush-v7``, ``HairBrushContinuous-v7`` — the same envs with the v7 physics (:data:`V7_PHYSICS`).
 - ``HairBrush-v8``, ``HairBrushContinuous-v8`` — the same envs with the v8 physics (:data:`V8_PHYSICS`).
 - ``HairBrush-v9``, ``HairBrushContinuous-v9`` — the same envs with the v9 physics (:data:`V9_PHYSICS`).
+- ``HairBrush-v10``, ``HairBrushContinuous-v10`` — the same envs with the v10 physics (:data:`V10_PHYSICS`).
 
 A change of the brushing physics is a new version, never a change under v0: agents trained on v0 (the RL reference
 run, docs/rl.md) are evaluated on the physics they were trained on.
@@ -35,6 +36,7 @@ __all__ = [
     "V7_PHYSICS",
     "V8_PHYSICS",
     "V9_PHYSICS",
+    "V10_PHYSICS",
     "RewardConfig",
     "make_version",
     "register_envs",
@@ -70,6 +72,9 @@ V8_PHYSICS: dict = PHYSICS["v8"].env_kwargs()
 #: What v9 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v9"]`` (v8 with the strands' drag on the
 #: velocity across them only, ``WigConfig.drag_normal_only``, and the ``springy_comb``, whose tines are lightly damped).
 V9_PHYSICS: dict = PHYSICS["v9"].env_kwargs()
+#: What v10 changes against v0: :data:`hairbrush_env.physics.PHYSICS` ``["v10"]`` (v9 whose strokes read the load
+#: cell only while the brush is above the bottom of the hair, ``SceneConfig.read_in_hair``, as Algorithm 1 does).
+V10_PHYSICS: dict = PHYSICS["v10"].env_kwargs()
 
 
 #: Every registered env id: (entry point, episode limit, default kwargs).
@@ -129,6 +134,12 @@ ENV_IDS: dict[str, tuple[str, int, dict]] = {
         "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
         MAX_CONTROL_STEPS,
         V9_PHYSICS,
+    ),
+    "HairBrush-v10": ("hairbrush_env.envs.stroke:HairBrushEnv", MAX_STROKES, V10_PHYSICS),
+    "HairBrushContinuous-v10": (
+        "hairbrush_env.envs.continuous:HairBrushContinuousEnv",
+        MAX_CONTROL_STEPS,
+        V10_PHYSICS,
     ),
 }
 #: The stroke-level ids (``hairbrush compare``, the sigmoid fit and RL training take one of these).

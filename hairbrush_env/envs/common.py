@@ -117,18 +117,55 @@ def check_wig_seeds(wig_seeds: Sequence[int] | None, n_wig_states: int) -> tuple
     return tuple(int(v) for v in seeds)
 
 
-def make_scene_config(wig, *, width: int, height: int, load_cell_noise: float, brush: Any = "comb"):
-    """The :class:`~hairbrush_env.scene.SceneConfig` of an env (wig, brush, webcam size, load-cell noise)."""
+#: SceneConfig fields an env sets from its own arguments, which ``scene_fields`` may not set.
+_OWN_SCENE_FIELDS = ("wig", "brush", "width", "height", "load_cell")
+
+
+def make_scene_config(
+    wig,
+    *,
+    width: int,
+    height: int,
+    load_cell_noise: float,
+    brush: Any = "comb",
+    scene_fields: Mapping[str, Any] | None = None,
+):
+    """The :class:`~hairbrush_env.scene.SceneConfig` of an env (wig, brush, webcam size, load-cell noise) with the
+    SceneConfig fields ``scene_fields`` set (a version's stroke rules, e.g. v10's ``read_in_hair``)."""
     import dataclasses
 
     from ..scene import SceneConfig
 
     if not (math.isfinite(load_cell_noise) and load_cell_noise >= 0):
         raise ValueError(f"load_cell_noise: must be a finite number >= 0, got {load_cell_noise!r}")
-    base = SceneConfig(wig=wig, brush=brush, width=int(width), height=int(height))
+    base = SceneConfig(
+        wig=wig, brush=brush, width=int(width), height=int(height), **check_scene_fields(scene_fields)
+    )
     return dataclasses.replace(
         base, load_cell=dataclasses.replace(base.load_cell, noise_std=float(load_cell_noise))
     )
+
+
+def check_scene_fields(scene_fields: Mapping[str, Any] | None) -> Mapping[str, Any]:
+    """``scene_fields`` (None or a mapping of SceneConfig field names) checked: ``ValueError`` names an unknown field
+    or one the env sets from its own arguments."""
+    from ..scene import SceneConfig
+
+    if scene_fields is None:
+        return {}
+    if not isinstance(scene_fields, Mapping):
+        raise ValueError(f"scene_fields: expected a mapping of SceneConfig fields, got {scene_fields!r}")
+    known = sorted({f.name for f in fields(SceneConfig)} - set(_OWN_SCENE_FIELDS))
+    bad = sorted(set(scene_fields) - set(known))
+    if bad:
+        raise ValueError(
+            f"scene_fields: unknown or env-owned SceneConfig field(s) {bad}; valid: {', '.join(known)}"
+        )
+    try:
+        SceneConfig(**scene_fields)  # a bad value, named by SceneConfig, before any wig is built
+    except (TypeError, ValueError) as err:
+        raise ValueError(f"scene_fields: {err}") from None
+    return scene_fields
 
 
 def apply_wig_fields(
@@ -177,6 +214,7 @@ SHARED_ENV_ARGS = (
     "wig",
     "wig_fields",
     "preset_fields",
+    "scene_fields",
     "brush",
     "obs_mode",
     "render_mode",
@@ -215,12 +253,14 @@ class BrushEnvBase(gym.Env):
         state_cache_dir: str | None = None,
         wig_fields: Mapping[str, Any] | None = None,
         preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
+        scene_fields: Mapping[str, Any] | None = None,
     ) -> None:
         from ..brush import get_brush
         from ..hair import StateCache
         from ..scene import BrushingSim  # deferred: importing the package must stay cheap
 
         brush = get_brush(brush)  # "brush: unknown preset ..." before anything is built
+        check_scene_fields(scene_fields)  # "scene_fields: ..." before anything is built
 
         if obs_mode not in OBS_MODES:
             raise ValueError(f"obs_mode: expected one of {OBS_MODES}, got {obs_mode!r}")
@@ -253,7 +293,12 @@ class BrushEnvBase(gym.Env):
         self.sims = [
             BrushingSim(
                 make_scene_config(
-                    w, brush=brush, width=width, height=height, load_cell_noise=load_cell_noise
+                    w,
+                    brush=brush,
+                    width=width,
+                    height=height,
+                    load_cell_noise=load_cell_noise,
+                    scene_fields=scene_fields,
                 ),
                 cache=cache,
             )

@@ -71,9 +71,9 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     `max_episode_steps` (600 = 60 s, set at registration) or on divergence (`info["diverged"]`).
 
     ## Arguments
-    `wig`, `wig_fields`, `preset_fields`, `brush`, `obs_mode`, `render_mode`, `width`, `height`, `force_threshold`,
-    `n_wig_states`, `wig_seeds`, `state_cache_dir`, `detangled_fraction`, `reward`, `load_cell_noise` as in
-    `HairBrush-v0`, plus `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
+    `wig`, `wig_fields`, `preset_fields`, `scene_fields`, `brush`, `obs_mode`, `render_mode`, `width`, `height`,
+    `force_threshold`, `n_wig_states`, `wig_seeds`, `state_cache_dir`, `detangled_fraction`, `reward`,
+    `load_cell_noise` as in `HairBrush-v0`, plus `max_vertical_speed` (0.2 m/s) and `max_depth_speed` (0.05 m/s).
 
     ## Version History
     - v0: initial release. Issue #11: the progress reward divides by at least one link (`PROGRESS_FLOOR`; only
@@ -87,6 +87,8 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
     - v7: v0 with the v7 physics of `HairBrush-v7` (v6 with smaller curls on the curliest presets).
     - v8: v0 with the v8 physics of `HairBrush-v8` (v7 with tines that hair slides on at its own friction).
     - v9: v0 with the v9 physics of `HairBrush-v9` (v8 with the drag across the strands only and springy tines).
+    - v10: the same as v9: v10 changes only what a stroke of `HairBrush-v10` reads (`read_in_hair`), and this env
+      has no strokes.
     """
 
     def __init__(
@@ -95,6 +97,7 @@ class HairBrushContinuousEnv(BrushEnvBase, EzPickle):
         wig: Any = "curly",
         wig_fields: Mapping[str, Any] | None = None,
         preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
+        scene_fields: Mapping[str, Any] | None = None,
         brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,

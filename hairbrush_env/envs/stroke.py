@@ -92,7 +92,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       (`info["diverged"] = True`; the episode ends, nothing is raised).
 
     ## Info
-    `max_force`, `pain_violations` (strokes so far whose force reached F_T, whatever the abort), `entanglement`
+    `max_force` (the largest force the stroke read: with `scene_fields={"read_in_hair": True}` only while the brush
+    was above the bottom of the hair), `pull_max_force` (the largest of the whole pull), `samples_read` (how many of
+    `force_samples`, from the first, the stroke read), `pain_violations` (strokes so far whose force anywhere in the
+    pull reached F_T, whatever the abort), `entanglement`
     (Σ|Lk| over the entwined pairs plus link made between any other two strands, `hair.Entanglement`),
     `entanglement_initial`, `curliness_true` (R/P of the wig), `sim_time` (simulated brushing time so far, s),
     `diverged`, `brush_length`, `aborted`, `wig` (preset name), `force_samples` (the stroke's 10 Hz force samples,
@@ -109,6 +112,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       model this way) |
     | `preset_fields` | `None` | `WigConfig` fields set on named presets only (`{"coily": {"curl_radius": 0.009}}`;
       v7 re-sizes its curliest presets' curls this way): a wig given by name, or as a config equal to the preset |
+    | `scene_fields` | `None` | `SceneConfig` fields set on the scene (`{"read_in_hair": True}`: v10's strokes read
+      the load cell only while the brush is above the bottom of the hair, as Algorithm 1 does) |
     | `brush` | `"comb"` | preset name from `hairbrush_env.brush.BRUSH_PRESETS` (`"comb"`, `"soft_comb"`, `"paddle"`)
       or a `BrushConfig` |
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |
@@ -162,6 +167,10 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
       (`WigConfig.drag_normal_only`) and the `springy_comb` (a tenth of the tines' hinge damping), so that a 4× faster
       pull moves the maximum force by ≤ 25 % (Fig. 3.8) (`hairbrush_env.envs.V9_PHYSICS`). Same spaces, rewards and
       episode rules.
+    - v10 (issue #21): v9 whose strokes read the load cell only while the brush is above the bottom of the hair
+      (`SceneConfig.read_in_hair`), as thesis Algorithm 1 does: the abort and `max_force` (observation and info) see
+      those samples; `force_trace` keeps the whole pull and pain is counted over it (`hairbrush_env.envs.V10_PHYSICS`).
+      Same spaces and rewards.
     """
 
     #: Fraction of the action range, at its top, that maps to the full stroke b_l = 1.
@@ -173,6 +182,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
         wig: Any = "curly",
         wig_fields: Mapping[str, Any] | None = None,
         preset_fields: Mapping[str, Mapping[str, Any]] | None = None,
+        scene_fields: Mapping[str, Any] | None = None,
         brush: Any = "comb",
         obs_mode: str = "state",
         render_mode: str | None = None,
@@ -285,7 +295,13 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
                 force_trace=self._trace(forces), max_force=float(result.max_force), brush_length=b_l
             )
             info = self._info(diverged=True, aborted=result.aborted)
-            info.update(RewardConfig.zero_terms(), force_samples=forces.tolist(), force_times=times)
+            info.update(
+                RewardConfig.zero_terms(),
+                force_samples=forces.tolist(),
+                force_times=times,
+                pull_max_force=float(result.pull_max_force),
+                samples_read=int(result.samples_read),
+            )
             return self._obs(), 0.0, False, True, info
         e_now = self.sim.entanglement()
         f_max = float(result.max_force)
@@ -308,7 +324,7 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             done=finished or detangled,
         )
         self._e = e_now
-        self._pain += int(f_max >= self.force_threshold)
+        self._pain += int(result.pull_max_force >= self.force_threshold)
         self._prev_fmax = None if result.aborted else f_max
         self._last.update(force_trace=self._trace(forces), max_force=f_max, brush_length=b_l)
         info = self._info(diverged=False, aborted=result.aborted)
@@ -318,6 +334,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
             detangled=detangled,
             force_samples=forces.tolist(),
             force_times=times,
+            pull_max_force=float(result.pull_max_force),
+            samples_read=int(result.samples_read),
         )
         reward = float(sum(terms.values()))
         return self._obs(), reward, bool(finished or detangled), False, info

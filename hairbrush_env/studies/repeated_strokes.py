@@ -39,7 +39,7 @@ __all__ = [
 COLUMNS = [
     "wig", "seed", "brush_length", "stroke", "max_force", "entwined", "made", "entanglement", "crossings",
     "min_hair_hair", "min_hair_bristle", "min_self", "cpu_s", "sim_s", "steps", "aborted", "diverged",
-    "still_entwined",
+    "still_entwined", "pull_max_force",
 ]  # fmt: skip
 
 
@@ -76,9 +76,9 @@ def repeated_strokes(
         )
     sim.reset(seed)
     rows = [
-        dict(stroke=0, max_force=0.0, **_entanglement_columns(sim), crossings=0, min_hair_hair=math.nan,
-             min_hair_bristle=math.nan, min_self=math.nan, cpu_s=0.0, sim_s=0.0, steps=0, aborted=False,
-             diverged=False)
+        dict(stroke=0, max_force=0.0, pull_max_force=0.0, **_entanglement_columns(sim), crossings=0,
+             min_hair_hair=math.nan, min_hair_bristle=math.nan, min_self=math.nan, cpu_s=0.0, sim_s=0.0, steps=0,
+             aborted=False, diverged=False)
     ]  # fmt: skip
     if on_stroke is not None:
         on_stroke(rows[0])
@@ -93,6 +93,7 @@ def repeated_strokes(
         row = dict(
             stroke=k,
             max_force=res.max_force,
+            pull_max_force=res.pull_max_force,
             **_entanglement_columns(sim),
             crossings=len(mon.crossings) if mon is not None else -1,
             min_hair_hair=mon.hair_hair_fraction if mon is not None else math.nan,
@@ -137,7 +138,9 @@ def _read(path: Path) -> list[dict[str, Any]]:
         ints=("seed", "stroke", "crossings", "steps", "still_entwined"),
         bools=("aborted", "diverged"),
     )  # fmt: skip
-    for row in rows:
+    for row in rows:  # pull_max_force: absent before v10 read part of a pull (then the whole pull was read)
+        value = row.get("pull_max_force", "")
+        row["pull_max_force"] = float(value) if value not in ("", None) else row["max_force"]
         row.setdefault("min_self", math.nan)  # written before the column existed
     return rows
 

@@ -101,6 +101,10 @@ def test_actions_validated(env):
         ({"width": 7}, "width"),
         ({"wig_fields": {"colour": "red"}}, "wig_fields"),
         ({"wig_fields": {"friction": -0.1}}, "wig_fields"),
+        ({"scene_fields": {"colour": "red"}}, "scene_fields"),
+        ({"scene_fields": {"wig": "coily"}}, "scene_fields"),
+        ({"scene_fields": {"read_in_hair": "yes"}}, "scene_fields.*read_in_hair"),
+        ({"scene_fields": ["read_in_hair"]}, "scene_fields"),
     ],
 )
 def test_bad_config_raises(kwargs, field):
@@ -158,6 +162,24 @@ def test_v2_brushes_with_drag_and_less_damping(small_wig):
     assert not info["diverged"] and not truncated
     assert np.abs(sim.data.xfrc_applied).max() > 0.0  # the strand drag of the last physics step
     v2.close()
+
+
+def test_v10_reads_the_stroke_in_the_hair_and_counts_pain_over_the_pull(small_wig):
+    """``HairBrush-v10``: ``max_force`` (observation and info) is the largest of the samples the stroke read, the
+    first ``samples_read`` of ``force_samples``, taken while the brush was above the bottom of the hair; the pull's
+    own maximum is reported beside it, and pain is counted on it."""
+    v10 = gym.make("HairBrush-v10", wig=small_wig, force_threshold=0.05, abort_force=None)
+    assert v10.unwrapped.sim.config.read_in_hair
+    v10.reset(seed=0)
+    obs, _, _, _, info = v10.step(v10.unwrapped.brush_length_to_action(0.5))
+    f, n = np.array(info["force_samples"]), info["samples_read"]
+    assert not info["diverged"] and 0 < n < f.size
+    assert (
+        info["max_force"] == pytest.approx(f[:n].max()) == pytest.approx(float(obs["max_force"][0]), abs=1e-5)
+    )
+    assert info["pull_max_force"] == pytest.approx(f.max())
+    assert info["pain_violations"] == int(f.max() >= 0.05)
+    v10.close()
 
 
 def test_divergence_truncates_without_raising(env):
