@@ -267,6 +267,7 @@ def test_fig_3_7_under_v7() -> None:
     assert t[("coily", 0.33)] < t[("coily", 0.67)] < t[("coily", 1.0)]
 
 
+@pytest.mark.slow  # the default suite checks v10's Fig. 3.6(ii) instead (test_fig_3_6_ii_under_v10_reduced)
 def test_fig_3_7_under_v8_reduced() -> None:
     """Fig. 3.6(ii) under ``HairBrush-v8`` (tines of the hair's friction 0.15, below every curl's lead-angle tangent),
     reduced (tight_curl, seed 0, no abort): the stroke reads more the longer it is (measured 4.21 < 7.45 < 11.83 N at
@@ -351,3 +352,31 @@ def test_fig_3_7_under_v9() -> None:
     grows with b_l but curly's, whose b_l 0.33 reads more than its 0.67 (3.85 against 3.05 N: both maxima are the
     strands' ends released from the tines far below their rest, docs/detangling.md, *HairBrush-v9*)."""
     _assert_fig_3_7_order(_fig_3_7_grid("v9"), curly_short_below=0.45)
+
+
+def test_fig_3_6_ii_under_v10_reduced() -> None:
+    """Fig. 3.6(ii) under ``HairBrush-v10`` reduced to curly, seed 0, no abort: read as Algorithm 1 reads, while the
+    brush is above the bottom of the hair, the stroke reads more the longer it is (measured 0.58 < 2.24 < 9.91 N at
+    b_l 0.33 / 0.67 / 1). Under v9, which read the whole pull, the short strokes read the strands they had hooked and
+    dragged below their rest free ends: 3.86 N at b_l 0.33, more than its 0.67 (docs/detangling.md, *HairBrush-v10*).
+    """
+    rows = stroke_study.measure_strokes(
+        ["curly"], brush_lengths=[0.33, 0.67, 1.0], seeds=[0], progress=False, physics="v10"
+    )
+    assert not any(r["diverged"] for r in rows)
+    read = {r["brush_length"]: r["max_force"] for r in rows}
+    pull = {r["brush_length"]: r["pull_max_force"] for r in rows}
+    assert read[0.33] < read[0.67] < read[1.0], read
+    assert read[0.33] < 0.5 * pull[0.33] and read[1.0] == pytest.approx(pull[1.0]), (read, pull)
+
+
+@pytest.mark.slow
+def test_fig_3_7_under_v10() -> None:
+    """Figs 3.6(ii) and 3.7 under v10 (``hairbrush strokes --physics v10 --wigs all --brush-lengths 0.33,0.67,1
+    --seeds 3``), read as Algorithm 1 reads: at b_l = 1 the force grows with curliness (measured 0.01 < 3.71 < 5.06 <
+    9.50 < 11.84 < 14.19 N), straight stays well below F_T and the curliest full stroke reads above it, and every
+    curled preset's force grows with b_l, curly's too (0.61 < 2.41 < 9.50 N; under v9, reading the whole pull, 3.85 >
+    3.05 N at b_l 0.33 / 0.67)."""
+    t = _fig_3_7_grid("v10")
+    _assert_fig_3_7_order(t, curly_short_below=0.3)
+    assert t[("curly", 0.33)] < t[("curly", 0.67)] < t[("curly", 1.0)], t
