@@ -12,7 +12,9 @@ wig) at the start height ``z_bottom + b_l·L_b`` (``b_l`` = normalized brush len
 the roots with the default comb, :attr:`BrushingSim.brushable_length`), the load cell is tared, the brush is pushed
 in to the brushing depth, then pulled straight down at constant speed until the whole brush is below every strand,
 wherever it dragged them (down to ``SceneConfig.pull_floor_z``); the load cell is read at 10 Hz and the stroke stops
-as soon as a reading reaches the abort force, if the policy set one (``BrushingSim.stroke(abort_force=...)``).
+as soon as a reading reaches the abort force, if the policy set one (``BrushingSim.stroke(abort_force=...)``). With
+``SceneConfig.read_in_hair`` (HairBrush-v10) only readings taken while the brush is above the bottom of the hair count,
+as in Algorithm 1; the pull goes on all the same.
 The speed is 0.1 m/s by default:
 the thesis moved its arm at a fixed, slow speed and found the maximum force nearly speed-independent (Fig. 3.8).
 """
