@@ -63,8 +63,8 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   of the hair (``SceneConfig.read_in_hair``); the abort and a stroke's ``max_force`` see those samples, the pull
   goes on as under v9 and pain is counted over all of it. The hair and the brush are v9's. Under v9 a short stroke
   read the force of the few strands it had hooked and dragged 7–11 cm below their rest free ends, after it had left
-  the hair: curly's b_l = 0.33 strokes read 3.5–4.2 N there and 0.56–0.69 N in the hair (docs/detangling.md,
-  *HairBrush-v10*).
+  the hair: curly's b_l = 0.33 strokes, seeds 0–2, read 3.45–4.24 N there and 0.54–0.70 N in the hair
+  (docs/detangling.md, *HairBrush-v10*).
 """
 
 from __future__ import annotations
