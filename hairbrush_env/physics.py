@@ -61,10 +61,10 @@ fields applied to every wig it brushes, presets and custom wigs alike.
   full stroke moved +52 % for 0.05 → 0.2 m/s (Fig. 3.8); under v9 +15 % (docs/detangling.md, *HairBrush-v9*).
 - ``v10``: v9 whose strokes read the load cell as thesis Algorithm 1 does, only while the brush is above the bottom
   of the hair (``SceneConfig.read_in_hair``); the abort and a stroke's ``max_force`` see those samples, the pull
-  goes on as under v9 and pain is counted over all of it. The hair and the brush are v9's. Under v9 a short stroke
-  read the force of the few strands it had hooked and dragged 7–11 cm below their rest free ends, after it had left
-  the hair: curly's b_l = 0.33 strokes, seeds 0–2, read 3.45–4.24 N there and 0.54–0.70 N in the hair
-  (docs/detangling.md, *HairBrush-v10*).
+  goes on as under v9 (a sample below the hair no longer aborts it) and pain is counted over all of it. The hair and
+  the brush are v9's. Under v9 a short stroke read the force of the strands it had hooked and dragged below their
+  rest free ends (7–10 cm on curly's b_l 0.33), after it had left the hair: curly's b_l = 0.33 strokes, seeds 0–2,
+  read 3.45–4.24 N there and 0.54–0.70 N in the hair (docs/detangling.md, *HairBrush-v10*).
 """
 
 from __future__ import annotations

@@ -559,8 +559,9 @@ class BrushingSim:
             Pull speed [m/s]; default ``config.stroke_speed``.
         abort_force : float or None
             The stroke stops at the first load-cell sample ≥ this [N] (Algorithm 1's inner loop at the pain
-            threshold ``F_T``, the default); ``None`` pulls through to the end whatever the force (a naive or human
-            stroke, the thesis's Fig. 3.11).
+            threshold ``F_T``, the default), among the samples it reads (with ``SceneConfig.read_in_hair`` those taken
+            while the brush is above the bottom of the hair); ``None`` pulls through to the end whatever the force
+            (a naive or human stroke, the thesis's Fig. 3.11).
         rng : np.random.Generator, optional
             Load-cell noise source for this stroke.
         y : float

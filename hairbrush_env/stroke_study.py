@@ -48,7 +48,7 @@ def read_strokes(path: str | Path) -> list[dict[str, Any]]:
     )
     for row in rows:
         value = row.get("pull_max_force", "")
-        row["pull_max_force"] = float(value) if value not in ("", None) else row["max_force"]
+        row["pull_max_force"] = float(value) if value not in ("", "None", None) else row["max_force"]
     return rows
 
 

@@ -188,3 +188,13 @@ def test_episodes_of_a_cell_meet_distinct_pre_brushed_wigs(monkeypatch) -> None:
     assert [s[3] for s in curly[:5]] == [10, 11, 12, 13, 14]
     assert [s[4] for s in seen[10:]] == list(HELD_OUT_SEEDS)
     assert all(s[0][2] == HELD_OUT_SEEDS for s in seen[10:])
+
+
+def test_results_written_before_v10_read_back_with_the_pull_maximum(tmp_path) -> None:
+    """A ``results.csv`` without ``pull_max_force`` (written before v10 read part of a pull) reads back with it equal
+    to ``max_force``: those versions read the whole pull."""
+    rows = [_row("curly", "naive", 0, 12.5)]
+    old_columns = [c for c in compare.COLUMNS if c != "pull_max_force"]
+    write_csv_rows(tmp_path / "results.csv", rows, old_columns)
+    (back,) = compare.read_results(tmp_path / "results.csv")
+    assert back["pull_max_force"] == back["max_force"] == 12.5

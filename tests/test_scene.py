@@ -165,8 +165,9 @@ def test_short_stroke_samples_at_10hz(sim: scene.BrushingSim) -> None:
 def test_read_in_hair_reads_the_pull_above_the_rest_free_ends_only() -> None:
     """``SceneConfig.read_in_hair`` (v10): the stroke reads the load cell, for its abort and ``max_force``, only while
     the brush is above the bottom of the hair, as thesis Algorithm 1 does; the pull goes on. Curly's b_l = 0.33
-    stroke, seed 0, reads 0.58 N there and 3.86 N at the end of its pull, where the tines drag hooked strands far
-    below their rest free ends: an abort at 1.5 N, which the whole pull would trip, does not stop it."""
+    stroke, seed 0, reads about 0.58 N there and 3.86 N over its whole pull, whose maximum comes where the tines
+    drag hooked strands far below their rest free ends: an abort at 1.5 N, which the whole pull would trip, does not
+    stop it."""
     from hairbrush_env.physics import get_physics
 
     sim = scene.BrushingSim(get_physics("v10").scene_config("curly"))
@@ -183,7 +184,7 @@ def test_read_in_hair_reads_the_pull_above_the_rest_free_ends_only() -> None:
     forces = np.array([x[0] for x in seen])
     k = next(k for k in range(forces.size - f.size + 1) if np.array_equal(forces[k : k + f.size], f))
     z = np.array([x[1] for x in seen[k : k + f.size]])
-    # read while the brush is above the rest free ends (checked once per 1 mm control period), none below
+    # read while the brush is above the rest free ends (checked once per 10 ms control period, 1 mm of pull), none below
     assert np.all(z[:n] >= sim.hair_bottom - 0.0015) and np.all(z[n:] < sim.hair_bottom)
 
 

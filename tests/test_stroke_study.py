@@ -284,9 +284,9 @@ def test_fig_3_7_under_v8_reduced() -> None:
 
 
 def _assert_fig_3_7_order(t: dict, *, curly_short_below: float) -> None:
-    """Figs 3.6(ii)/3.7 as v8 and v9 meet them: at b_l = 1 the force grows with curliness, straight well below F_T
-    and the curliest above it; every curled preset's force grows with b_l but curly's, whose short strokes both stay
-    below ``curly_short_below`` of its full stroke."""
+    """Figs 3.6(ii)/3.7 as v8, v9 and v10 meet them (v10 also meets curly's order, asserted by its own test): at
+    b_l = 1 the force grows with curliness, straight well below F_T and the curliest above it; every curled preset's
+    force grows with b_l but curly's, whose short strokes both stay below ``curly_short_below`` of its full stroke."""
     from hairbrush_env.hair import PRESETS
     from hairbrush_env.scene import PAIN_THRESHOLD
 
@@ -356,7 +356,7 @@ def test_fig_3_7_under_v9() -> None:
 
 def test_fig_3_6_ii_under_v10_reduced() -> None:
     """Fig. 3.6(ii) under ``HairBrush-v10`` reduced to curly, seed 0, no abort: read as Algorithm 1 reads, while the
-    brush is above the bottom of the hair, the stroke reads more the longer it is (measured 0.58 < 2.24 < 9.91 N at
+    brush is above the bottom of the hair, the stroke reads more the longer it is (measured 0.58 < 2.24 < 9.94 N at
     b_l 0.33 / 0.67 / 1). Under v9, which read the whole pull, the short strokes read the strands they had hooked and
     dragged below their rest free ends: 3.86 N at b_l 0.33, more than its 0.67 (docs/detangling.md, *HairBrush-v10*).
     """

@@ -113,7 +113,8 @@ class HairBrushEnv(BrushEnvBase, EzPickle):
     | `preset_fields` | `None` | `WigConfig` fields set on named presets only (`{"coily": {"curl_radius": 0.009}}`;
       v7 re-sizes its curliest presets' curls this way): a wig given by name, or as a config equal to the preset |
     | `scene_fields` | `None` | `SceneConfig` fields set on the scene (`{"read_in_hair": True}`: v10's strokes read
-      the load cell only while the brush is above the bottom of the hair, as Algorithm 1 does) |
+      the load cell only while the brush is above the bottom of the hair, as Algorithm 1 does). Given to
+      `gymnasium.make("HairBrush-v10", ...)` it replaces v10's, so keep `"read_in_hair": True` in it |
     | `brush` | `"comb"` | preset name from `hairbrush_env.brush.BRUSH_PRESETS` (`"comb"`, `"soft_comb"`, `"paddle"`)
       or a `BrushConfig` |
     | `obs_mode` | `"state"` | `"state"`, `"image"` or `"state+image"` |

@@ -140,7 +140,7 @@ def _read(path: Path) -> list[dict[str, Any]]:
     )  # fmt: skip
     for row in rows:  # pull_max_force: absent before v10 read part of a pull (then the whole pull was read)
         value = row.get("pull_max_force", "")
-        row["pull_max_force"] = float(value) if value not in ("", None) else row["max_force"]
+        row["pull_max_force"] = float(value) if value not in ("", "None", None) else row["max_force"]
         row.setdefault("min_self", math.nan)  # written before the column existed
     return rows
 
