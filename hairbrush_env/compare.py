@@ -54,12 +54,11 @@ def read_results(path: str | Path) -> list[dict[str, Any]]:
         ),
         ints=("episode", "seed", "strokes", "pain_violations"),
         bools=("diverged",),
+        fallbacks={"pull_max_force": "max_force"},  # absent from grids run before v10 read part of a pull
     )
     for row in rows:
         value = row.get("abort_force", "")
         row["abort_force"] = float(value) if value not in ("", "None", None) else None
-        value = row.get("pull_max_force", "")  # absent from grids run before v10 read part of a pull
-        row["pull_max_force"] = float(value) if value not in ("", "None", None) else row["max_force"]
         value = row.get("wig_seed", "")  # absent from grids run before episodes were given distinct wigs
         row["wig_seed"] = int(value) if value not in ("", "None", None) else None
     return rows

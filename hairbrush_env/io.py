@@ -9,7 +9,7 @@ import io
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -78,14 +78,20 @@ def read_csv_rows(
     floats: Sequence[str] = (),
     ints: Sequence[str] = (),
     bools: Sequence[str] = (),
+    fallbacks: Mapping[str, str] | None = None,
 ) -> list[dict[str, Any]]:
     """Rows of a CSV written by :func:`write_csv_rows`, with the named columns converted back (a named column the
-    file does not have, e.g. one added after it was written, stays absent)."""
+    file does not have, e.g. one added after it was written, stays absent). ``fallbacks`` maps a float column added
+    later to the converted column that stood for it before: where the file has no value for it, it takes that one
+    (``{"pull_max_force": "max_force"}``: before v10 a stroke read its whole pull)."""
     rows = []
     with open(path, newline="") as fh:
         for row in csv.DictReader(fh):
             row.update({k: float(row[k]) for k in floats if k in row})
             row.update({k: int(row[k]) for k in ints if k in row})
             row.update({k: row[k] == "True" for k in bools if k in row})
+            for k, old in (fallbacks or {}).items():
+                value = row.get(k, "")
+                row[k] = float(value) if value not in ("", "None", None) else row[old]
             rows.append(row)
     return rows

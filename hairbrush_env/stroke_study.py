@@ -40,16 +40,13 @@ COLUMNS = [
 def read_strokes(path: str | Path) -> list[dict[str, Any]]:
     """Rows of a ``strokes.csv`` with numeric columns converted (``pull_max_force``, absent from files written before
     v10 read part of a pull, is then ``max_force``: the whole pull was read)."""
-    rows = read_csv_rows(
+    return read_csv_rows(
         path,
         floats=("R_over_P", "brush_length", "speed", "max_force", "sim_time"),
         ints=("seed",),
         bools=("diverged",),
+        fallbacks={"pull_max_force": "max_force"},
     )
-    for row in rows:
-        value = row.get("pull_max_force", "")
-        row["pull_max_force"] = float(value) if value not in ("", "None", None) else row["max_force"]
-    return rows
 
 
 def _check(name: str, values: Sequence[float], lo: float, hi: float) -> list[float]:

@@ -137,10 +137,9 @@ def _read(path: Path) -> list[dict[str, Any]]:
                 "min_hair_bristle", "min_self", "cpu_s", "sim_s"),
         ints=("seed", "stroke", "crossings", "steps", "still_entwined"),
         bools=("aborted", "diverged"),
+        fallbacks={"pull_max_force": "max_force"},  # absent before v10 read part of a pull
     )  # fmt: skip
-    for row in rows:  # pull_max_force: absent before v10 read part of a pull (then the whole pull was read)
-        value = row.get("pull_max_force", "")
-        row["pull_max_force"] = float(value) if value not in ("", "None", None) else row["max_force"]
+    for row in rows:
         row.setdefault("min_self", math.nan)  # written before the column existed
     return rows
 
