@@ -201,6 +201,10 @@ def plot_rollout(
             f_all.append(np.nan)
         label = f"{ep['policy']} · {ep['wig']} · ep {ep['episode']}"
         ax_t.plot(t_all, f_all, color=color, lw=1.2, label=label)
+        # A stroke aborted at its first sample has no line to draw: mark it, or the largest force is not shown.
+        lone = [(s["times"][0], s["forces"][0]) for s in ep["steps"] if len(s["forces"]) == 1]
+        if lone:
+            ax_t.plot(*zip(*lone, strict=True), "o", color=color, ms=4)
         ax_s.plot(
             np.arange(1, len(ep["steps"]) + 1),
             [s["max_force"] for s in ep["steps"]],

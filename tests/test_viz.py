@@ -32,3 +32,26 @@ def test_episode_recording_draws_the_tines_and_stores_frames_compressed(tmp_path
     rec.close()
     raw = 10 * h * w * 3
     assert 1_000 < path.stat().st_size < 0.25 * raw, path.stat().st_size
+
+
+def test_rollout_plot_marks_a_stroke_aborted_at_its_first_sample(tmp_path, monkeypatch) -> None:
+    """A one-sample stroke between the NaN breaks draws no line; the force panel must still show its force."""
+    from hairbrush_env import viz
+
+    step = {"times": [0.1, 0.2], "forces": [2.0, 3.0], "max_force": 3.0, "entanglement": 5.0}
+    aborted = {"times": [1.1], "forces": [14.5], "max_force": 14.5, "entanglement": 5.0}
+    episode = {"policy": "sigmoid", "wig": "coily", "episode": 0, "entanglement_initial": 6.0,
+               "steps": [step, aborted]}  # fmt: skip
+    marked: list[float] = []
+    save = viz.save_figure
+
+    def capture(fig, path):
+        for line in fig.axes[0].get_lines():  # the load-cell panel
+            if line.get_marker() == "o":
+                marked.extend(np.asarray(line.get_ydata(), dtype=float).tolist())
+        save(fig, path)
+
+    monkeypatch.setattr(viz, "save_figure", capture)
+    viz.plot_rollout([episode], tmp_path / "rollout.png")
+    assert marked == [14.5]
+    assert (tmp_path / "rollout.png").exists()
