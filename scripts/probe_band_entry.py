@@ -1,7 +1,8 @@
 """Exploration probe: what a stroke reads against how far below the roots its tines go in (docs/detangling.md,
 *Why coily's sigmoid cycles below the roots*).
 
-    python scripts/probe_band_entry.py WIG SEED B1,B2,... [--physics v10] [--climb]   # e.g. coily 2 0.88,0.91,0.93
+    python scripts/probe_band_entry.py WIG SEED B1,B2,... [--physics v10] [--climb] [--set FIELD=VALUE ...]
+    # e.g. coily 2 0.88,0.91,0.93; --set root_run=2 changes a WigConfig field on top of the version's
 
 One stroke per b_l, no abort, each from the pre-brushed wig SEED (with ``--climb``: one after another on the same
 wig, as a policy's strokes are). Per stroke: the depth below the roots at which the tines go in, the first four
@@ -10,6 +11,8 @@ hair and over the whole pull, and the fraction of the wig's entanglement left.
 """
 
 import argparse
+import dataclasses
+import json
 import os
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
@@ -24,12 +27,20 @@ parser.add_argument("seed", type=int)
 parser.add_argument("b_l", help="comma-separated normalized start heights")
 parser.add_argument("--physics", choices=list(PHYSICS), default="v10")
 parser.add_argument("--climb", action="store_true", help="brush the strokes one after another on one wig")
+parser.add_argument(
+    "--set", action="append", default=[], help="WigConfig FIELD=VALUE (JSON value), after the version's"
+)
 args = parser.parse_args()
 fractions = [float(b) for b in args.b_l.split(",")]
 if not all(0.0 < b <= 1.0 for b in fractions):
     parser.error(f"b_l: every start height must be in (0, 1], got {args.b_l!r}")
 
-sim = BrushingSim(get_physics(args.physics).scene_config(args.wig))
+physics = get_physics(args.physics)
+fields = {k: json.loads(v) for k, v in (item.split("=", 1) for item in args.set)}
+wig = dataclasses.replace(physics.wig(args.wig), **fields)
+sim = BrushingSim(dataclasses.replace(physics.scene_config(args.wig), wig=wig))
+print(f"{args.wig} under {args.physics}{''.join(f', {k}={v!r}' for k, v in fields.items())}: "
+      f"hanging {wig.hanging_length * 1e3:.1f} mm")  # fmt: skip
 sim.reset(args.seed)
 start = sim.entanglement()
 roots = float(sim.hair_curve_array()[:, 0, 2].max())  # the roots are fixed
