@@ -2,7 +2,7 @@
 *Why coily's sigmoid cycles below the roots*).
 
     python scripts/probe_band_entry.py WIG SEED B1,B2,... [--physics v10] [--climb] [--set FIELD=VALUE ...]
-    # e.g. coily 2 0.88,0.91,0.93; --set root_run=2 changes a WigConfig field on top of the version's
+    # e.g. coily 2 0.88,0.91,0.93; --set root_run=1 changes a WigConfig field on top of the version's
 
 One stroke per b_l, no abort, each from the pre-brushed wig SEED (with ``--climb``: one after another on the same
 wig, as a policy's strokes are). Per stroke: the depth below the roots at which the tines go in, the first four
@@ -36,8 +36,11 @@ if not all(0.0 < b <= 1.0 for b in fractions):
     parser.error(f"b_l: every start height must be in (0, 1], got {args.b_l!r}")
 
 physics = get_physics(args.physics)
-fields = {k: json.loads(v) for k, v in (item.split("=", 1) for item in args.set)}
-wig = dataclasses.replace(physics.wig(args.wig), **fields)
+try:
+    fields = {k: json.loads(v) for k, v in (item.split("=", 1) for item in args.set)}
+    wig = dataclasses.replace(physics.wig(args.wig), **fields)
+except (ValueError, TypeError) as exc:  # no '=', not JSON, an unknown or invalid WigConfig field
+    parser.error(f"--set {args.set!r}: {exc}")
 sim = BrushingSim(dataclasses.replace(physics.scene_config(args.wig), wig=wig))
 print(f"{args.wig} under {args.physics}{''.join(f', {k}={v!r}' for k, v in fields.items())}: "
       f"hanging {wig.hanging_length * 1e3:.1f} mm")  # fmt: skip
