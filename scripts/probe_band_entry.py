@@ -12,12 +12,12 @@ hair and over the whole pull, and the fraction of the wig's entanglement left.
 
 import argparse
 import dataclasses
-import json
 import os
 
 os.environ.setdefault("NUMBA_NUM_THREADS", "1")
 
 from hairbrush_env import hair
+from hairbrush_env.commands.checks import wig_field
 from hairbrush_env.physics import PHYSICS, get_physics
 from hairbrush_env.scene import BrushingSim
 
@@ -28,7 +28,7 @@ parser.add_argument("b_l", help="comma-separated normalized start heights")
 parser.add_argument("--physics", choices=list(PHYSICS), default="v10")
 parser.add_argument("--climb", action="store_true", help="brush the strokes one after another on one wig")
 parser.add_argument(
-    "--set", action="append", default=[], help="WigConfig FIELD=VALUE (JSON value), after the version's"
+    "--set", action="append", type=wig_field, default=[], help="WigConfig FIELD=VALUE (JSON value)"
 )
 args = parser.parse_args()
 fractions = [float(b) for b in args.b_l.split(",")]
@@ -36,11 +36,8 @@ if not all(0.0 < b <= 1.0 for b in fractions):
     parser.error(f"b_l: every start height must be in (0, 1], got {args.b_l!r}")
 
 physics = get_physics(args.physics)
-try:
-    fields = {k: json.loads(v) for k, v in (item.split("=", 1) for item in args.set)}
-    wig = dataclasses.replace(physics.wig(args.wig), **fields)
-except (ValueError, TypeError) as exc:  # no '=', not JSON, an unknown or invalid WigConfig field
-    parser.error(f"--set {args.set!r}: {exc}")
+fields = dict(args.set)
+wig = dataclasses.replace(physics.wig(args.wig), **fields)
 sim = BrushingSim(dataclasses.replace(physics.scene_config(args.wig), wig=wig))
 print(f"{args.wig} under {args.physics}{''.join(f', {k}={v!r}' for k, v in fields.items())}: "
       f"hanging {wig.hanging_length * 1e3:.1f} mm")  # fmt: skip

@@ -155,6 +155,9 @@ BAD_INPUT = [
     (["rollout", "--json", "{d}/a_file/out.json"], ["--json", "a_file"]),
     (["rollout", "--plot", "out.txt"], ["--plot", "out.txt"]),
     (["rollout", "--width", "5"], ["--width", "'5'"]),
+    (["rollout", "--set", "root_run=2"], ["--set", "root_run", "2"]),
+    (["rollout", "--set", "bogus=1"], ["--set", "bogus"]),
+    (["rollout", "--set", "root_run"], ["--set", "root_run"]),
     (["compare", "--policies", "full,bogus"], ["--policies", "bogus"]),
     (["compare", "--wigs", "curly,nope"], ["--wigs", "nope"]),
     (["compare", "--out", "{d}/a_file"], ["--out", "a_file"]),
@@ -220,3 +223,34 @@ def test_help_lists_wigs_and_policies_and_every_option_has_help():
     flat = " ".join(rollout.split())
     assert all(w in flat for w in PRESETS) and all(p in flat for p in available_policies())
     assert "(default: curly)" in flat and "(default: 0)" in flat
+
+
+def test_rollout_set_changes_a_wig_field_on_top_of_the_versions(monkeypatch):
+    """``hairbrush rollout --set root_run=1`` hands the env its version's wig fields with that one changed (an env's
+    ``wig_fields`` replace the version's, so passing the field alone would drop v10's others)."""
+    import hairbrush_env.envs as envs
+    from hairbrush_env.physics import get_physics
+
+    seen = {}
+
+    def fake_make(env_id, **kwargs):
+        seen.update(kwargs, env_id=env_id)
+        raise ValueError("stop before building the scene")
+
+    monkeypatch.setattr(envs, "make_version", fake_make)
+    with pytest.raises(SystemExit, match="stop before building"):
+        main(
+            [
+                "rollout",
+                "--env",
+                "HairBrush-v10",
+                "--wig",
+                "coily",
+                "--set",
+                "root_run=1",
+                "--set",
+                "damping=0.5",
+            ]
+        )
+    assert seen["env_id"] == "HairBrush-v10"
+    assert seen["wig_fields"] == {**get_physics("v10").wig_fields, "root_run": 1, "damping": 0.5}

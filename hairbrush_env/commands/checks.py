@@ -123,6 +123,33 @@ def wig_name(text: str) -> str:
     return names[0]
 
 
+def wig_field(text: str) -> tuple[str, object]:
+    """``FIELD=VALUE``: a :class:`~hairbrush_env.hair.WigConfig` field and its value (JSON, e.g. ``root_run=1``),
+    checked on the default preset so that an unknown field or a value out of its range fails before any simulation."""
+    import dataclasses
+    import json
+
+    from ..hair import DEFAULT_WIG, PRESETS
+
+    field, sep, raw = text.partition("=")
+    if not sep or not field:
+        raise argparse.ArgumentTypeError(f"expected FIELD=VALUE, got {text!r}")
+    try:
+        value = json.loads(raw)
+    except json.JSONDecodeError:
+        value = raw  # a bare string, e.g. name=mine
+    known = {f.name for f in dataclasses.fields(PRESETS[DEFAULT_WIG])}
+    if field not in known:
+        raise argparse.ArgumentTypeError(
+            f"unknown WigConfig field {field!r} (see hairbrush_env.hair.WigConfig)"
+        )
+    try:
+        dataclasses.replace(PRESETS[DEFAULT_WIG], **{field: value})
+    except (ValueError, TypeError) as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from exc
+    return field, value
+
+
 def policy_names(text: str) -> list[str]:
     """Comma-separated registered policy names (or ``sb3:DIR`` with an existing DIR)."""
     from ..policies import policy_entry_point

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from . import add_webcam_args
-from .checks import count, output_file, policy_choices, policy_name, seed, wig_choices, wig_name
+from .checks import count, output_file, policy_choices, policy_name, seed, wig_choices, wig_field, wig_name
 
 
 def _cmd_rollout(args: argparse.Namespace) -> int:
@@ -13,10 +13,12 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
 
     from ..envs import make_version
     from ..io import write_json
+    from ..physics import get_physics
     from ..policies import make_policy
     from ..rollout import run_episode
     from ..viz import EpisodeRecorder, VideoWriter, plot_rollout
 
+    version = args.env.rsplit("-", 1)[1]  # HairBrush-v10 and HairBrushContinuous-v10 brush under physics v10
     try:
         env = make_version(
             args.env,
@@ -28,6 +30,8 @@ def _cmd_rollout(args: argparse.Namespace) -> int:
             **({"max_episode_steps": args.max_steps} if args.max_steps is not None else {}),
             # one pre-brushed state for every episode: how a compare cell is reproduced with its stroke traces
             **({"wig_seeds": (args.wig_seed,)} if args.wig_seed is not None else {}),
+            # the version's own wig fields stay: wig_fields given to an env replace them
+            **({"wig_fields": {**get_physics(version).wig_fields, **dict(args.set)}} if args.set else {}),
         )
         policy = make_policy(args.policy, env)
     except ValueError as exc:
@@ -143,6 +147,15 @@ def _add_rollout(sub: argparse._SubParsersAction) -> None:
         default=None,
         help="start every episode from pre-brushed state W (the wig_seed column of compare's results.csv), "
         "e.g. to get a compare row's stroke traces (default: the seed draws one of the wig's states)",
+    )
+    p.add_argument(
+        "--set",
+        action="append",
+        type=wig_field,
+        default=[],
+        metavar="FIELD=VALUE",
+        help="set a WigConfig field on the wig, on top of the env version's (a JSON value; repeatable), e.g. "
+        "root_run=1 to spread the curl starts over a whole pitch",
     )
     p.add_argument(
         "--max-steps",
