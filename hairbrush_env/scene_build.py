@@ -158,12 +158,9 @@ class SceneConfig:
     read_in_hair: bool = False
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "wig", hairmod.get_wig(self.wig))
-        object.__setattr__(
-            self,
-            "read_in_hair",
-            bool(self.read_in_hair) if isinstance(self.read_in_hair, np.bool_) else self.read_in_hair,
-        )  # ValueError naming 'wig' if unknown
+        object.__setattr__(self, "wig", hairmod.get_wig(self.wig))  # ValueError naming 'wig' if unknown
+        if isinstance(self.read_in_hair, np.bool_):  # e.g. from a numpy array of settings
+            object.__setattr__(self, "read_in_hair", bool(self.read_in_hair))
         object.__setattr__(self, "brush", get_brush(self.brush))
         for name in (
             "timestep",
@@ -202,7 +199,7 @@ class SceneConfig:
             raise ValueError(
                 f"SceneConfig.pull_floor_z must be in [{_PULL_FLOOR_MIN}, free_end_z), got {self.pull_floor_z!r}"
             )
-        if not isinstance(self.read_in_hair, (bool, np.bool_)):
+        if not isinstance(self.read_in_hair, bool):
             raise ValueError(f"SceneConfig.read_in_hair must be True or False, got {self.read_in_hair!r}")
         if not (math.isfinite(self.brush_depth) and abs(self.brush_depth) <= 0.03):
             raise ValueError(f"SceneConfig.brush_depth must be within ±0.03 m, got {self.brush_depth!r}")
